@@ -1,0 +1,62 @@
+//! Tetrahedral meshes for volume rendering: points, tetrahedra, point scalar
+//! fields; readers for VTK legacy, VTK XML (.vtu) and PLOT3D; the
+//! face-neighbour graph and boundary faces; validation.
+//!
+//! Conventions shared by every crate of the workspace:
+//! - every tetrahedron is stored positively oriented:
+//!   `(p1 - p0) . ((p2 - p0) x (p3 - p0)) > 0` (fixed on load);
+//! - local face `f` of a tetrahedron is the face opposite its vertex `f`, with
+//!   the vertex order [`FACE_VERTICES`]`[f]`, counter-clockwise seen from
+//!   outside (its normal by the right-hand rule points out of the tetrahedron).
+
+// API CONTRACT (skeleton): the types and signatures below are what the other
+// crates program against. Bodies are filled in by the mesh work.
+
+use glam::Vec3;
+
+/// Local vertex indices of face `f` (opposite vertex `f`), ordered so the
+/// right-hand normal points outwards for a positively oriented tetrahedron.
+pub const FACE_VERTICES: [[usize; 3]; 4] = [[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]];
+
+/// Marks a face with no neighbouring tetrahedron (a boundary face).
+pub const NO_NEIGHBOR: u32 = u32::MAX;
+
+/// A scalar value per mesh point.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ScalarField {
+    pub name: String,
+    pub values: Vec<f32>,
+}
+
+/// An unstructured tetrahedral mesh with point scalars.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct TetMesh {
+    pub points: Vec<Vec3>,
+    /// Four point indices per tetrahedron, positively oriented.
+    pub tets: Vec<[u32; 4]>,
+    pub fields: Vec<ScalarField>,
+}
+
+/// A face of the mesh with a tetrahedron on one side only.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct BoundaryFace {
+    /// The tetrahedron this face belongs to.
+    pub tet: u32,
+    /// Its local face index in that tetrahedron (0..4).
+    pub local_face: u8,
+    /// Point indices, counter-clockwise seen from outside the mesh.
+    pub vertices: [u32; 3],
+}
+
+/// Face adjacency of a [`TetMesh`].
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Topology {
+    /// `neighbors[t][f]`: the tetrahedron across local face `f` of `t`, or
+    /// [`NO_NEIGHBOR`].
+    pub neighbors: Vec<[u32; 4]>,
+    /// Every boundary face, outward oriented.
+    pub boundary_faces: Vec<BoundaryFace>,
+    /// `boundary_index[t][f]`: index into `boundary_faces` when face `f` of
+    /// `t` is on the boundary, else `u32::MAX`.
+    pub boundary_index: Vec<[u32; 4]>,
+}
