@@ -60,3 +60,5 @@ pub struct Topology {
     /// `t` is on the boundary, else `u32::MAX`.
     pub boundary_index: Vec<[u32; 4]>,
 }
+
+pub mod vtk;

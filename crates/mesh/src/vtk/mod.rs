@@ -1,0 +1,1 @@
+//! VTK readers and writers: legacy `.vtk` UNSTRUCTURED_GRID and XML `.vtu`.
