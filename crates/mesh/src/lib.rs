@@ -8,9 +8,32 @@
 //! - local face `f` of a tetrahedron is the face opposite its vertex `f`, with
 //!   the vertex order [`FACE_VERTICES`]`[f]`, counter-clockwise seen from
 //!   outside (its normal by the right-hand rule points out of the tetrahedron).
+//!
+//! Entry points: [`load`] (a file, by name), [`load_plot3d_bytes`] (an
+//! embedded grid), [`prepare`] (a mesh built in memory). Each orients the
+//! tetrahedra, [`validate`]s the mesh (a mesh that cannot be walked face to
+//! face is an error, never rendered wrong) and builds its [`Topology`].
 
-// API CONTRACT (skeleton): the types and signatures below are what the other
-// crates program against. Bodies are filled in by the mesh work.
+mod conform;
+mod error;
+mod geometry;
+mod info;
+mod load;
+mod seams;
+mod topology;
+mod validate;
+
+pub mod plot3d;
+pub mod structured;
+
+pub use error::MeshError;
+pub use geometry::{tet_shape, TetShape, DEGENERATE_HEIGHT_ULPS};
+pub use info::{FieldRange, MeshSummary};
+pub use load::{
+    load, load_plot3d_bytes, plot3d_q_sibling, prepare, LoadOptions, LoadReport, LoadedMesh,
+};
+pub use plot3d::{read_plot3d_bytes, read_plot3d_files, Plot3dRead};
+pub use validate::{validate, validate_with_topology, ValidationReport};
 
 use glam::Vec3;
 

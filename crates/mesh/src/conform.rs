@@ -1,0 +1,282 @@
+//! Conformity: tetrahedra must meet face to face. Where they do not, faces
+//! are left unmatched inside the mesh and a face-to-face walk stops there:
+//! - a hanging node (a T-junction): a point of one tetrahedron lies on an
+//!   edge or inside a face of another;
+//! - two sides of a shared quadrilateral split along different diagonals.
+//!
+//! Face matching alone cannot see either: the unmatched faces on both sides
+//! of the crack form closed surfaces, so the boundary is still closed edge
+//! by edge (as many i->j as j->i: that holds for the boundary of any set of
+//! tetrahedra whose matched faces have opposite orientations, which
+//! validation checks). The tests are geometric instead, within f32
+//! resolution: no boundary point may lie on a boundary face unless it is
+//! one of its corners (possibly through a duplicate point, as on a seam),
+//! and no two boundary faces sharing an edge may lie folded onto each other
+//! (unless they coincide through duplicate points: a seam).
+
+use glam::DVec3;
+use rayon::prelude::*;
+
+use crate::{BoundaryFace, TetMesh, Topology, DEGENERATE_HEIGHT_ULPS};
+
+/// A point found on a boundary face that does not have it as a corner.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct HangingNode {
+    pub point: u32,
+    pub face: BoundaryFace,
+    /// Whether the point is on an edge of the face (else inside it).
+    pub on_edge: bool,
+}
+
+/// Two boundary faces sharing an edge and lying on each other.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct FoldedFaces {
+    pub edge: [u32; 2],
+    pub faces: [BoundaryFace; 2],
+}
+
+/// Leaf size of the face hierarchy.
+const LEAF: usize = 8;
+
+struct Node {
+    lo: DVec3,
+    hi: DVec3,
+    /// Leaf: range in `order`; inner: `start` is the left child, `end` the
+    /// right one.
+    start: u32,
+    end: u32,
+    leaf: bool,
+}
+
+/// A bounding-box hierarchy over boundary faces (median splits).
+struct FaceTree {
+    nodes: Vec<Node>,
+    order: Vec<u32>,
+}
+
+impl FaceTree {
+    fn build(corners: &[[DVec3; 3]]) -> FaceTree {
+        let mut tree = FaceTree {
+            nodes: Vec::new(),
+            order: (0..corners.len() as u32).collect(),
+        };
+        let count = corners.len();
+        tree.split(corners, 0, count);
+        tree
+    }
+
+    fn split(&mut self, corners: &[[DVec3; 3]], start: usize, end: usize) -> u32 {
+        let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+        for &f in &self.order[start..end] {
+            for p in corners[f as usize] {
+                lo = lo.min(p);
+                hi = hi.max(p);
+            }
+        }
+        let index = self.nodes.len();
+        self.nodes.push(Node {
+            lo,
+            hi,
+            start: start as u32,
+            end: end as u32,
+            leaf: true,
+        });
+        if end - start > LEAF {
+            let axis = (hi - lo).max_position();
+            let centroid = |f: u32| {
+                let [a, b, c] = corners[f as usize];
+                (a + b + c)[axis]
+            };
+            let mid = (start + end) / 2;
+            self.order[start..end]
+                .select_nth_unstable_by(mid - start, |&x, &y| centroid(x).total_cmp(&centroid(y)));
+            let left = self.split(corners, start, mid);
+            let right = self.split(corners, mid, end);
+            self.nodes[index] = Node {
+                lo,
+                hi,
+                start: left,
+                end: right,
+                leaf: false,
+            };
+        }
+        index as u32
+    }
+
+    /// Calls `visit` on every face whose box, grown by `tol`, holds `p`,
+    /// until it returns `true`.
+    fn any_near(&self, p: DVec3, tol: f64, mut visit: impl FnMut(u32) -> bool) -> bool {
+        let mut stack = vec![0u32];
+        while let Some(n) = stack.pop() {
+            let node = &self.nodes[n as usize];
+            if p.cmplt(node.lo - tol).any() || p.cmpgt(node.hi + tol).any() {
+                continue;
+            }
+            if node.leaf {
+                if self.order[node.start as usize..node.end as usize]
+                    .iter()
+                    .any(|&f| visit(f))
+                {
+                    return true;
+                }
+            } else {
+                stack.push(node.start);
+                stack.push(node.end);
+            }
+        }
+        false
+    }
+}
+
+/// Distance from `p` to the segment `a b`.
+fn segment_distance(p: DVec3, a: DVec3, b: DVec3) -> f64 {
+    let ab = b - a;
+    let len2 = ab.length_squared();
+    let t = if len2 > 0.0 {
+        ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (a + ab * t - p).length()
+}
+
+/// Where `p` is relative to triangle `t` within `tol`: `None` when off it
+/// or at a corner, `Some(true)` on an edge, `Some(false)` inside.
+fn on_triangle(p: DVec3, t: [DVec3; 3], tol: f64) -> Option<bool> {
+    if t.iter().any(|&c| (c - p).length() <= tol) {
+        return None;
+    }
+    let normal = (t[1] - t[0]).cross(t[2] - t[0]);
+    let len2 = normal.length_squared();
+    if len2 == 0.0 || (p - t[0]).dot(normal).abs() > tol * len2.sqrt() {
+        return None;
+    }
+    let edge = (0..3).any(|e| segment_distance(p, t[e], t[(e + 1) % 3]) <= tol);
+    if edge {
+        return Some(true);
+    }
+    // Inside when p is on the inner side of all three edges.
+    let inside = (0..3).all(|e| (t[(e + 1) % 3] - t[e]).cross(p - t[e]).dot(normal) >= 0.0);
+    inside.then_some(false)
+}
+
+/// The first boundary point (lowest index) lying on a boundary face that
+/// does not have it as a corner. `canonical` maps each point to the lowest
+/// index with the same coordinates.
+pub(crate) fn find_hanging_node(
+    mesh: &TetMesh,
+    topology: &Topology,
+    canonical: &[u32],
+) -> Option<HangingNode> {
+    let faces = &topology.boundary_faces;
+    if faces.is_empty() {
+        return None;
+    }
+    let point = |i: u32| mesh.points[i as usize].as_dvec3();
+    let corners: Vec<[DVec3; 3]> = faces.iter().map(|f| f.vertices.map(point)).collect();
+    let tree = FaceTree::build(&corners);
+    let mut points: Vec<u32> = faces.iter().flat_map(|f| f.vertices).collect();
+    points.par_sort_unstable();
+    points.dedup();
+    let ulp = DEGENERATE_HEIGHT_ULPS * f64::from(f32::EPSILON);
+    // Boxes grow by the largest tolerance any face test can use.
+    let box_tol = ulp
+        * corners
+            .iter()
+            .flatten()
+            .fold(0.0, |m: f64, c| m.max(c.abs().max_element()));
+    points.par_iter().find_map_first(|&v| {
+        let p = point(v);
+        let mut found = None;
+        tree.any_near(p, box_tol, |f| {
+            let face = faces[f as usize];
+            if face
+                .vertices
+                .iter()
+                .any(|&c| canonical[c as usize] == canonical[v as usize])
+            {
+                return false;
+            }
+            let t = corners[f as usize];
+            let scale = t
+                .iter()
+                .fold(p.abs().max_element(), |m, c| m.max(c.abs().max_element()));
+            match on_triangle(p, t, ulp * scale) {
+                Some(on_edge) => {
+                    found = Some(HangingNode {
+                        point: v,
+                        face,
+                        on_edge,
+                    });
+                    true
+                }
+                None => false,
+            }
+        });
+        found
+    })
+}
+
+/// The first pair of boundary faces (in edge order) that share an edge and
+/// lie folded onto each other: coplanar within f32 resolution, with their
+/// third points on the same side of the edge. Pairs whose third points
+/// coincide (`canonical`) are seams and pass.
+pub(crate) fn find_folded_faces(
+    mesh: &TetMesh,
+    topology: &Topology,
+    canonical: &[u32],
+) -> Option<FoldedFaces> {
+    let faces = &topology.boundary_faces;
+    let mut edges: Vec<(u64, u32)> = faces
+        .par_iter()
+        .enumerate()
+        .flat_map_iter(|(b, face)| {
+            let v = face.vertices;
+            (0..3).map(move |e| {
+                let (i, j) = (v[e], v[(e + 1) % 3]);
+                ((u64::from(i.min(j)) << 32) | u64::from(i.max(j)), b as u32)
+            })
+        })
+        .collect();
+    edges.par_sort_unstable();
+    let point = |i: u32| mesh.points[i as usize].as_dvec3();
+    let ulp = DEGENERATE_HEIGHT_ULPS * f64::from(f32::EPSILON);
+    let runs: Vec<&[(u64, u32)]> = edges
+        .chunk_by(|a, b| a.0 == b.0)
+        .filter(|r| r.len() > 1)
+        .collect();
+    runs.par_iter().find_map_first(|run| {
+        let edge = [(run[0].0 >> 32) as u32, run[0].0 as u32];
+        let apex = |b: u32| {
+            let face = faces[b as usize];
+            face.vertices
+                .into_iter()
+                .find(|v| !edge.contains(v))
+                .unwrap_or(face.vertices[0])
+        };
+        let (u, v) = (point(edge[0]), point(edge[1]));
+        for (x, &(_, fa)) in run.iter().enumerate() {
+            for &(_, fb) in &run[x + 1..] {
+                let (a, b) = (apex(fa), apex(fb));
+                if canonical[a as usize] == canonical[b as usize] {
+                    continue;
+                }
+                let (pa, pb) = (point(a), point(b));
+                let normal = (v - u).cross(pa - u);
+                let len = normal.length();
+                let scale = [u, v, pa, pb]
+                    .iter()
+                    .fold(0.0, |m: f64, p| m.max(p.abs().max_element()));
+                let coplanar = len > 0.0 && (pb - u).dot(normal).abs() <= ulp * scale * len;
+                let across = normal.cross(v - u);
+                if coplanar && (pa - u).dot(across) * (pb - u).dot(across) > 0.0 {
+                    return Some(FoldedFaces {
+                        edge,
+                        faces: [faces[fa as usize], faces[fb as usize]],
+                    });
+                }
+            }
+        }
+        None
+    })
+}

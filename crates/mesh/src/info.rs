@@ -1,0 +1,121 @@
+//! A human-readable summary of a loaded mesh (`tetray info`).
+
+use std::fmt;
+
+use glam::Vec3;
+
+use crate::LoadedMesh;
+
+/// Range of one scalar field.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FieldRange {
+    pub name: String,
+    pub min: f32,
+    pub max: f32,
+}
+
+/// Counts, bounds, scalar ranges and findings of a loaded mesh.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeshSummary {
+    pub format: &'static str,
+    pub points: usize,
+    pub tets: usize,
+    pub boundary_faces: usize,
+    /// Interior faces (each shared by two tetrahedra).
+    pub interior_faces: usize,
+    pub components: usize,
+    pub bounds: (Vec3, Vec3),
+    pub fields: Vec<FieldRange>,
+    pub inverted_fixed: usize,
+    pub degenerate_dropped: usize,
+    pub cells_split: usize,
+    pub tets_from_split: usize,
+    pub warnings: Vec<String>,
+}
+
+impl MeshSummary {
+    pub fn new(loaded: &LoadedMesh) -> MeshSummary {
+        let LoadedMesh {
+            mesh,
+            topology,
+            report,
+        } = loaded;
+        let fields = mesh
+            .fields
+            .iter()
+            .map(|f| {
+                let (min, max) = f
+                    .values
+                    .iter()
+                    .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &v| {
+                        (lo.min(v), hi.max(v))
+                    });
+                FieldRange {
+                    name: f.name.clone(),
+                    min,
+                    max,
+                }
+            })
+            .collect();
+        let boundary_faces = topology.boundary_faces.len();
+        MeshSummary {
+            format: report.format,
+            points: mesh.points.len(),
+            tets: mesh.tets.len(),
+            boundary_faces,
+            interior_faces: (4 * mesh.tets.len() - boundary_faces) / 2,
+            components: report.validation.components,
+            bounds: mesh.bounds(),
+            fields,
+            inverted_fixed: report.inverted_fixed,
+            degenerate_dropped: report.degenerate_dropped,
+            cells_split: report.cells_split,
+            tets_from_split: report.tets_from_split,
+            warnings: report.warnings.clone(),
+        }
+    }
+}
+
+impl fmt::Display for MeshSummary {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let (lo, hi) = self.bounds;
+        writeln!(f, "format:          {}", self.format)?;
+        writeln!(f, "points:          {}", self.points)?;
+        writeln!(f, "tetrahedra:      {}", self.tets)?;
+        writeln!(f, "interior faces:  {}", self.interior_faces)?;
+        writeln!(f, "boundary faces:  {}", self.boundary_faces)?;
+        writeln!(f, "components:      {}", self.components)?;
+        writeln!(
+            f,
+            "bounds:          x [{}, {}]  y [{}, {}]  z [{}, {}]",
+            lo.x, hi.x, lo.y, hi.y, lo.z, hi.z
+        )?;
+        if self.cells_split > 0 {
+            writeln!(
+                f,
+                "split:           {} cells into {} tetrahedra",
+                self.cells_split, self.tets_from_split
+            )?;
+        }
+        writeln!(f, "reoriented:      {}", self.inverted_fixed)?;
+        writeln!(f, "flat dropped:    {}", self.degenerate_dropped)?;
+        if self.fields.is_empty() {
+            writeln!(f, "fields:          none")?;
+        } else {
+            writeln!(f, "fields:")?;
+            let width = self.fields.iter().map(|r| r.name.len()).max().unwrap_or(0);
+            for r in &self.fields {
+                writeln!(f, "  {:width$}  [{}, {}]", r.name, r.min, r.max)?;
+            }
+        }
+        if self.warnings.is_empty() {
+            writeln!(f, "validation:      ok, no warnings")?;
+        } else {
+            writeln!(f, "validation:      ok, {} warnings:", self.warnings.len())?;
+            for w in &self.warnings {
+                writeln!(f, "  - {w}")?;
+            }
+        }
+        Ok(())
+    }
+}

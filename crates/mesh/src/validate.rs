@@ -1,0 +1,260 @@
+//! Validation: a mesh that cannot be walked is rejected before rendering,
+//! never rendered wrong.
+//!
+//! Errors (the first one found, naming the cell, point or field): empty
+//! mesh, field lengths, dangling or repeated point indices, non-finite
+//! coordinates or scalars, negatively oriented or degenerate tetrahedra,
+//! faces shared by more than two tetrahedra, tetrahedra overlapping across
+//! a shared face, and tetrahedra not meeting face to face (a hanging node
+//! or T-junction, a face split differently on its two sides; see
+//! `conform.rs`). Warnings for what renders fine: duplicate points, unused
+//! points, coincident boundary faces (seams), several components.
+
+use rayon::prelude::*;
+
+use crate::conform::{find_folded_faces, find_hanging_node};
+use crate::seams::{coincident_boundary_faces, duplicate_points};
+use crate::{tet_shape, MeshError, TetMesh, Topology, FACE_VERTICES};
+
+/// What validation found that does not stop rendering.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ValidationReport {
+    /// Connected components through shared faces.
+    pub components: usize,
+    /// Points equal in all three coordinates to an earlier point.
+    pub duplicate_points: usize,
+    /// Points no tetrahedron uses.
+    pub unused_points: usize,
+    /// Boundary faces lying exactly on another boundary face (a seam where
+    /// two parts of the mesh touch without sharing points).
+    pub seam_faces: usize,
+    /// The above (when not zero or one) as sentences.
+    pub warnings: Vec<String>,
+}
+
+/// Checks that `mesh` can be walked face to face; see the module docs.
+/// Expects positively oriented tetrahedra ([`TetMesh::orient`] first).
+///
+/// # Errors
+/// The first problem found, as the [`MeshError`] variant naming it.
+pub fn validate(mesh: &TetMesh) -> Result<ValidationReport, MeshError> {
+    validate_with_topology(mesh).map(|(report, _)| report)
+}
+
+/// [`validate`], also returning the topology it built on the way.
+pub fn validate_with_topology(mesh: &TetMesh) -> Result<(ValidationReport, Topology), MeshError> {
+    check_sizes(mesh)?;
+    check_indices(mesh)?;
+    check_finite(mesh)?;
+    check_shapes(mesh)?;
+    let topology = Topology::build(mesh)?;
+    check_face_sides(mesh, &topology)?;
+    let canonical = duplicate_points(&mesh.points);
+    if let Some(h) = find_hanging_node(mesh, &topology, &canonical) {
+        return Err(MeshError::NonConforming {
+            point: h.point,
+            face: h.face.vertices,
+            tet: h.face.tet,
+            on_edge: h.on_edge,
+        });
+    }
+    if let Some(f) = find_folded_faces(mesh, &topology, &canonical) {
+        let [a, b] = f.faces;
+        return Err(MeshError::FoldedFaces {
+            edge: f.edge,
+            face_a: a.vertices,
+            tet_a: a.tet,
+            face_b: b.vertices,
+            tet_b: b.tet,
+        });
+    }
+    let report = findings(mesh, &topology, &canonical);
+    Ok((report, topology))
+}
+
+fn check_sizes(mesh: &TetMesh) -> Result<(), MeshError> {
+    if mesh.tets.is_empty() {
+        return Err(MeshError::Empty);
+    }
+    let max = u32::MAX as usize;
+    if mesh.points.len() > max {
+        return Err(MeshError::TooLarge {
+            what: "points",
+            count: mesh.points.len(),
+            max,
+        });
+    }
+    for field in &mesh.fields {
+        if field.values.len() != mesh.points.len() {
+            return Err(MeshError::FieldLength {
+                field: field.name.clone(),
+                expected: mesh.points.len(),
+                found: field.values.len(),
+            });
+        }
+    }
+    Ok(())
+}
+
+fn check_indices(mesh: &TetMesh) -> Result<(), MeshError> {
+    let npoints = mesh.points.len();
+    let bad = mesh
+        .tets
+        .par_iter()
+        .enumerate()
+        .find_first(|(_, tet)| tet.iter().any(|&i| i as usize >= npoints) || has_repeat(tet));
+    let Some((t, tet)) = bad else { return Ok(()) };
+    if let Some(corner) = tet.iter().position(|&i| i as usize >= npoints) {
+        return Err(MeshError::DanglingIndex {
+            tet: t,
+            corner,
+            index: tet[corner],
+            npoints,
+        });
+    }
+    let point = (0..4)
+        .flat_map(|a| (a + 1..4).map(move |b| (a, b)))
+        .find(|&(a, b)| tet[a] == tet[b])
+        .map_or(tet[0], |(a, _)| tet[a]);
+    Err(MeshError::RepeatedVertex {
+        tet: t,
+        point,
+        vertices: *tet,
+    })
+}
+
+fn has_repeat(tet: &[u32; 4]) -> bool {
+    tet[0] == tet[1]
+        || tet[0] == tet[2]
+        || tet[0] == tet[3]
+        || tet[1] == tet[2]
+        || tet[1] == tet[3]
+        || tet[2] == tet[3]
+}
+
+fn check_finite(mesh: &TetMesh) -> Result<(), MeshError> {
+    let bad = mesh.points.par_iter().position_first(|p| !p.is_finite());
+    if let Some(point) = bad {
+        let p = mesh.points[point];
+        let axis = (0..3).find(|&a| !p[a].is_finite()).unwrap_or(0);
+        return Err(MeshError::NonFiniteCoordinate {
+            point,
+            axis: ['x', 'y', 'z'][axis],
+            value: p[axis],
+        });
+    }
+    for field in &mesh.fields {
+        if let Some(point) = field.values.par_iter().position_first(|v| !v.is_finite()) {
+            return Err(MeshError::NonFiniteScalar {
+                field: field.name.clone(),
+                point,
+                value: field.values[point],
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Degenerate before inverted: a flat tetrahedron's sign means nothing.
+fn check_shapes(mesh: &TetMesh) -> Result<(), MeshError> {
+    let bad = mesh.tets.par_iter().enumerate().find_first(|(t, _)| {
+        let shape = tet_shape(mesh.tet_points(*t));
+        shape.is_degenerate() || shape.volume6 < 0.0
+    });
+    let Some((t, &vertices)) = bad else {
+        return Ok(());
+    };
+    let shape = tet_shape(mesh.tet_points(t));
+    if shape.is_degenerate() {
+        return Err(MeshError::DegenerateTet {
+            tet: t,
+            vertices,
+            volume6: shape.volume6,
+            min_height: shape.min_height(),
+            threshold: shape.height_threshold(),
+        });
+    }
+    Err(MeshError::Inverted { tet: t, vertices })
+}
+
+/// Parity of the permutation sorting `v` (true when odd).
+fn odd_sort_parity(v: [u32; 3]) -> bool {
+    let inversions = u32::from(v[0] > v[1]) + u32::from(v[0] > v[2]) + u32::from(v[1] > v[2]);
+    inversions % 2 == 1
+}
+
+/// Two positively oriented tetrahedra on opposite sides of their shared
+/// face see it with opposite vertex orders (each counter-clockwise from its
+/// own outside). The same order means both lie on one side: they overlap,
+/// and a ray leaving one through that face would walk into the other.
+fn check_face_sides(mesh: &TetMesh, topology: &Topology) -> Result<(), MeshError> {
+    let bad = topology
+        .neighbors
+        .par_iter()
+        .enumerate()
+        .find_map_first(|(t, nbs)| {
+            nbs.iter().enumerate().find_map(|(f, &nb)| {
+                if nb == crate::NO_NEIGHBOR || (nb as usize) < t {
+                    return None;
+                }
+                let g = topology.shared_face(t as u32, nb)?;
+                let mine = FACE_VERTICES[f].map(|v| mesh.tets[t][v]);
+                let theirs = FACE_VERTICES[g].map(|v| mesh.tets[nb as usize][v]);
+                (odd_sort_parity(mine) == odd_sort_parity(theirs)).then_some((t as u32, nb, mine))
+            })
+        });
+    match bad {
+        Some((tet_a, tet_b, vertices)) => Err(MeshError::Overlapping {
+            tet_a,
+            tet_b,
+            vertices,
+        }),
+        None => Ok(()),
+    }
+}
+
+fn findings(mesh: &TetMesh, topology: &Topology, canonical: &[u32]) -> ValidationReport {
+    let (components, _) = topology.components();
+    let mut used = vec![false; mesh.points.len()];
+    for tet in &mesh.tets {
+        for &i in tet {
+            used[i as usize] = true;
+        }
+    }
+    let unused_points = used.iter().filter(|&&u| !u).count();
+    let duplicate_points = canonical
+        .iter()
+        .enumerate()
+        .filter(|&(i, &c)| c as usize != i)
+        .count();
+    let seam_faces = coincident_boundary_faces(topology, canonical);
+
+    let mut warnings = Vec::new();
+    if duplicate_points > 0 {
+        warnings.push(format!(
+            "{duplicate_points} points repeat the coordinates of another point \
+             (parts of the mesh touch without sharing points)"
+        ));
+    }
+    if seam_faces > 0 {
+        warnings.push(format!(
+            "{seam_faces} boundary faces lie exactly on another boundary face (seams); \
+             rays cross them by leaving and re-entering the mesh"
+        ));
+    }
+    if unused_points > 0 {
+        warnings.push(format!("{unused_points} points are used by no tetrahedron"));
+    }
+    if components > 1 {
+        warnings.push(format!(
+            "the mesh has {components} separate pieces (connected through faces)"
+        ));
+    }
+    ValidationReport {
+        components,
+        duplicate_points,
+        unused_points,
+        seam_faces,
+        warnings,
+    }
+}

@@ -1,0 +1,189 @@
+//! Numeric element types shared by the legacy and XML formats, and their
+//! decoding from bytes and from ASCII tokens.
+
+/// A numeric element type of a VTK array.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Scalar {
+    I8,
+    U8,
+    I16,
+    U16,
+    I32,
+    U32,
+    I64,
+    U64,
+    F32,
+    F64,
+}
+
+impl Scalar {
+    /// Bytes per element.
+    pub(crate) fn size(self) -> usize {
+        match self {
+            Scalar::I8 | Scalar::U8 => 1,
+            Scalar::I16 | Scalar::U16 => 2,
+            Scalar::I32 | Scalar::U32 | Scalar::F32 => 4,
+            Scalar::I64 | Scalar::U64 | Scalar::F64 => 8,
+        }
+    }
+
+    pub(crate) fn is_float(self) -> bool {
+        matches!(self, Scalar::F32 | Scalar::F64)
+    }
+
+    /// The `type` attribute of an XML DataArray.
+    pub(crate) fn from_vtu_name(name: &str) -> Option<Scalar> {
+        Some(match name {
+            "Int8" => Scalar::I8,
+            "UInt8" => Scalar::U8,
+            "Int16" => Scalar::I16,
+            "UInt16" => Scalar::U16,
+            "Int32" => Scalar::I32,
+            "UInt32" => Scalar::U32,
+            "Int64" => Scalar::I64,
+            "UInt64" => Scalar::U64,
+            "Float32" => Scalar::F32,
+            "Float64" => Scalar::F64,
+            _ => return None,
+        })
+    }
+
+    pub(crate) fn vtu_name(self) -> &'static str {
+        match self {
+            Scalar::I8 => "Int8",
+            Scalar::U8 => "UInt8",
+            Scalar::I16 => "Int16",
+            Scalar::U16 => "UInt16",
+            Scalar::I32 => "Int32",
+            Scalar::U32 => "UInt32",
+            Scalar::I64 => "Int64",
+            Scalar::U64 => "UInt64",
+            Scalar::F32 => "Float32",
+            Scalar::F64 => "Float64",
+        }
+    }
+
+    /// A legacy-format data type name (case-insensitive). `long` is taken as
+    /// 8 bytes (LP64, what VTK on Linux and macOS writes); `vtkIdType` as 4
+    /// bytes, because VTK's legacy writer stores id arrays as `int`.
+    pub(crate) fn from_legacy_name(name: &str) -> Option<Scalar> {
+        Some(match name.to_ascii_lowercase().as_str() {
+            "char" | "signed_char" | "vtktypeint8" => Scalar::I8,
+            "unsigned_char" | "vtktypeuint8" => Scalar::U8,
+            "short" | "vtktypeint16" => Scalar::I16,
+            "unsigned_short" | "vtktypeuint16" => Scalar::U16,
+            "int" | "vtkidtype" | "vtktypeint32" => Scalar::I32,
+            "unsigned_int" | "vtktypeuint32" => Scalar::U32,
+            "long" | "vtktypeint64" => Scalar::I64,
+            "unsigned_long" | "vtktypeuint64" => Scalar::U64,
+            "float" | "vtktypefloat32" => Scalar::F32,
+            "double" | "vtktypefloat64" => Scalar::F64,
+            _ => return None,
+        })
+    }
+}
+
+/// One element of `ty` from exactly `ty.size()` bytes, as f64 (exact for
+/// every float type and for integers up to 2^53).
+pub(crate) fn element_f64(ty: Scalar, b: &[u8], big_endian: bool) -> f64 {
+    match ty {
+        Scalar::F32 => f32::from_bits(u64_of(b, big_endian) as u32) as f64,
+        Scalar::F64 => f64::from_bits(u64_of(b, big_endian)),
+        Scalar::U8 | Scalar::U16 | Scalar::U32 | Scalar::U64 => u64_of(b, big_endian) as f64,
+        _ => i64_of(ty, b, big_endian) as f64,
+    }
+}
+
+/// One integer element; `None` for float types and for unsigned values
+/// beyond i64.
+pub(crate) fn element_i64(ty: Scalar, b: &[u8], big_endian: bool) -> Option<i64> {
+    match ty {
+        Scalar::F32 | Scalar::F64 => None,
+        Scalar::U64 => i64::try_from(u64_of(b, big_endian)).ok(),
+        Scalar::U8 | Scalar::U16 | Scalar::U32 => Some(u64_of(b, big_endian) as i64),
+        _ => Some(i64_of(ty, b, big_endian)),
+    }
+}
+
+/// The bytes as an unsigned integer of their length (1 to 8).
+pub(crate) fn u64_of(b: &[u8], big_endian: bool) -> u64 {
+    let fold = |acc: u64, &x: &u8| (acc << 8) | x as u64;
+    if big_endian {
+        b.iter().fold(0, fold)
+    } else {
+        b.iter().rev().fold(0, fold)
+    }
+}
+
+fn i64_of(ty: Scalar, b: &[u8], big_endian: bool) -> i64 {
+    let u = u64_of(b, big_endian);
+    // Sign-extend from the element's width.
+    let shift = 64 - 8 * ty.size() as u32;
+    ((u << shift) as i64) >> shift
+}
+
+/// Parses one ASCII token as a value of `ty`, returned as f64. Float32
+/// tokens are parsed as f32 so that the shortest decimal of an f32 gives
+/// back the same bits (parsing as f64 then rounding could round twice).
+pub(crate) fn parse_f64(ty: Scalar, token: &str) -> Option<f64> {
+    match ty {
+        Scalar::F32 => token.parse::<f32>().ok().map(f64::from),
+        Scalar::F64 => token.parse::<f64>().ok(),
+        _ => parse_i64(ty, token).map(|v| v as f64),
+    }
+}
+
+/// Parses one ASCII token as an integer of `ty`, checking its range.
+pub(crate) fn parse_i64(ty: Scalar, token: &str) -> Option<i64> {
+    let v: i128 = token.parse().ok()?;
+    let (lo, hi): (i128, i128) = match ty {
+        Scalar::I8 => (i8::MIN.into(), i8::MAX.into()),
+        Scalar::U8 => (0, u8::MAX.into()),
+        Scalar::I16 => (i16::MIN.into(), i16::MAX.into()),
+        Scalar::U16 => (0, u16::MAX.into()),
+        Scalar::I32 => (i32::MIN.into(), i32::MAX.into()),
+        Scalar::U32 => (0, u32::MAX.into()),
+        // Unsigned 64-bit values beyond i64 cannot be point indices or
+        // cell types; they are rejected as unparsable.
+        Scalar::I64 | Scalar::U64 => (
+            if ty == Scalar::U64 {
+                0
+            } else {
+                i64::MIN.into()
+            },
+            i64::MAX.into(),
+        ),
+        Scalar::F32 | Scalar::F64 => return None,
+    };
+    (lo..=hi).contains(&v).then_some(v as i64)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn decodes_both_byte_orders_and_signs() {
+        assert_eq!(element_i64(Scalar::I16, &[0xff, 0xfe], true), Some(-2));
+        assert_eq!(element_i64(Scalar::I16, &[0xfe, 0xff], false), Some(-2));
+        assert_eq!(element_i64(Scalar::U16, &[0xff, 0xfe], true), Some(0xfffe));
+        assert_eq!(element_i64(Scalar::U64, &[0xff; 8], true), None);
+        let x = 1.5f32;
+        assert_eq!(element_f64(Scalar::F32, &x.to_be_bytes(), true), 1.5);
+        assert_eq!(
+            element_f64(Scalar::F64, &(-2.25f64).to_le_bytes(), false),
+            -2.25
+        );
+        assert_eq!(element_f64(Scalar::I8, &[0x80], false), -128.0);
+    }
+
+    #[test]
+    fn parses_tokens_with_range_checks() {
+        assert_eq!(parse_i64(Scalar::U8, "255"), Some(255));
+        assert_eq!(parse_i64(Scalar::U8, "256"), None);
+        assert_eq!(parse_i64(Scalar::I32, "-5"), Some(-5));
+        assert_eq!(parse_i64(Scalar::I32, "1.0"), None);
+        assert_eq!(parse_f64(Scalar::F32, "0.1"), Some(0.1f32 as f64));
+        assert!(parse_f64(Scalar::F64, "nan").is_some_and(f64::is_nan));
+    }
+}

@@ -1,0 +1,285 @@
+//! XML `.vtu` UnstructuredGrid reader: Pieces are decoded and concatenated
+//! into one raw grid.
+
+use super::assemble::{assemble, RawArray, RawGrid};
+use super::numeric::Scalar;
+use super::vtu_data::ArrayDecoder;
+use super::vtu_xml::{self, XmlArray, XmlPiece};
+use super::{VtkError, VtkRead};
+
+/// Parses a `.vtu` file held in memory; `name` is used in messages.
+pub(crate) fn read(bytes: &[u8], name: &str) -> Result<VtkRead, VtkError> {
+    let doc = vtu_xml::parse(bytes, name)?;
+    if doc.pieces.is_empty() {
+        return Err(VtkError::Invalid {
+            file: name.into(),
+            section: "<UnstructuredGrid>".into(),
+            message: "no <Piece> element".into(),
+        });
+    }
+    let decoder = ArrayDecoder {
+        file: name,
+        doc: &doc,
+    };
+    let mut grid = RawGrid {
+        points_section: "Points".into(),
+        ..RawGrid::default()
+    };
+    let mut point_arrays = Vec::new();
+    let mut cell_arrays = Vec::new();
+    for (k, piece) in doc.pieces.iter().enumerate() {
+        let points_before = grid.points.len() / 3;
+        let cells_before = grid.types.len();
+        read_points(&decoder, piece, k, &mut grid)?;
+        read_cells(&decoder, piece, k, points_before, cells_before, &mut grid)?;
+        let points = read_arrays(&decoder, piece, k, false, &mut grid.warnings)?;
+        let cells = read_arrays(&decoder, piece, k, true, &mut grid.warnings)?;
+        // Empty pieces (common in parallel output) constrain nothing.
+        if piece.npoints > 0 {
+            point_arrays.push(points);
+        }
+        if piece.ncells > 0 {
+            cell_arrays.push(cells);
+        }
+    }
+    grid.point_arrays = merge(point_arrays, &mut grid.warnings);
+    grid.cell_arrays = merge(cell_arrays, &mut grid.warnings);
+    assemble(grid, name)
+}
+
+fn piece_error(file: &str, piece: &XmlPiece, k: usize, message: String) -> VtkError {
+    VtkError::Invalid {
+        file: file.into(),
+        section: format!("line {}, Piece {k}", piece.line),
+        message,
+    }
+}
+
+fn section(a: &XmlArray, k: usize, place: &str) -> String {
+    let name = a.name.as_deref().unwrap_or("");
+    format!("line {}, Piece {k} {place} DataArray \"{name}\"", a.line)
+}
+
+fn expect_count(
+    file: &str,
+    section: &str,
+    what: &str,
+    expected: usize,
+    found: usize,
+) -> Result<(), VtkError> {
+    if expected == found {
+        return Ok(());
+    }
+    Err(VtkError::CountMismatch {
+        file: file.into(),
+        section: section.into(),
+        what: what.into(),
+        expected,
+        found,
+    })
+}
+
+fn read_points(
+    d: &ArrayDecoder<'_, '_>,
+    piece: &XmlPiece,
+    k: usize,
+    grid: &mut RawGrid,
+) -> Result<(), VtkError> {
+    if piece.npoints == 0 {
+        return Ok(());
+    }
+    let Some(a) = &piece.points else {
+        return Err(piece_error(
+            d.file,
+            piece,
+            k,
+            "no <Points> DataArray".into(),
+        ));
+    };
+    let section = section(a, k, "Points");
+    if a.components != 3 {
+        return Err(VtkError::Invalid {
+            file: d.file.into(),
+            section,
+            message: format!("points have {} components, not 3", a.components),
+        });
+    }
+    let xyz = d.floats(a, &section)?;
+    let what = format!(
+        "coordinates (3 for each of NumberOfPoints={})",
+        piece.npoints
+    );
+    expect_count(
+        d.file,
+        &section,
+        &what,
+        piece.npoints.saturating_mul(3),
+        xyz.len(),
+    )?;
+    grid.points.extend(xyz);
+    Ok(())
+}
+
+/// Appends the piece's cells, its point indices shifted by the points of
+/// the pieces before it (each piece indexes its own points).
+fn read_cells(
+    d: &ArrayDecoder<'_, '_>,
+    piece: &XmlPiece,
+    k: usize,
+    points_before: usize,
+    cells_before: usize,
+    grid: &mut RawGrid,
+) -> Result<(), VtkError> {
+    if piece.ncells == 0 {
+        return Ok(());
+    }
+    let find = |name: &str| {
+        piece
+            .cells
+            .iter()
+            .find(|a| a.name.as_deref() == Some(name))
+            .ok_or_else(|| {
+                piece_error(
+                    d.file,
+                    piece,
+                    k,
+                    format!("<Cells> has no DataArray named \"{name}\""),
+                )
+            })
+    };
+    let (conn_array, offsets_array, types_array) =
+        (find("connectivity")?, find("offsets")?, find("types")?);
+
+    let offsets_section = section(offsets_array, k, "Cells");
+    let offsets = d.ints(offsets_array, &offsets_section)?;
+    let what = format!("offsets (NumberOfCells={})", piece.ncells);
+    expect_count(d.file, &offsets_section, &what, piece.ncells, offsets.len())?;
+    let types_section = section(types_array, k, "Cells");
+    let types = d.ints(types_array, &types_section)?;
+    let what = format!("cell types (NumberOfCells={})", piece.ncells);
+    expect_count(d.file, &types_section, &what, piece.ncells, types.len())?;
+    let conn_section = section(conn_array, k, "Cells");
+    let connectivity = d.ints(conn_array, &conn_section)?;
+
+    // VTK stores the end of each cell; check they never decrease.
+    let mut previous = 0usize;
+    for (c, &end) in offsets.iter().enumerate() {
+        let end = usize::try_from(end)
+            .ok()
+            .filter(|&e| e >= previous && e <= connectivity.len());
+        let Some(end) = end else {
+            return Err(VtkError::Invalid {
+                file: d.file.into(),
+                section: offsets_section,
+                message: format!(
+                    "offset {c} is {}: offsets must not decrease and must stay within the {} connectivity entries",
+                    offsets[c],
+                    connectivity.len()
+                ),
+            });
+        };
+        previous = end;
+    }
+    let what = "connectivity entries (the last offset)";
+    expect_count(d.file, &conn_section, what, previous, connectivity.len())?;
+
+    let start = grid.connectivity.len();
+    if grid.offsets.is_empty() {
+        grid.offsets.push(0);
+    }
+    // Offsets were checked to lie in 0..=len above.
+    grid.offsets
+        .extend(offsets.iter().map(|&o| start + o as usize));
+    let mut begin = 0;
+    for (c, &end) in offsets.iter().enumerate() {
+        let end = end as usize;
+        for &index in &connectivity[begin..end] {
+            if index < 0 || index as u64 >= piece.npoints as u64 {
+                return Err(VtkError::BadIndex {
+                    file: d.file.into(),
+                    cell: cells_before + c,
+                    index,
+                    npoints: piece.npoints,
+                });
+            }
+            grid.connectivity.push(index + points_before as i64);
+        }
+        begin = end;
+    }
+    grid.types.extend(types);
+    Ok(())
+}
+
+/// The PointData (or CellData) arrays of one piece. Arrays of a type that
+/// is not numeric (String, Bit) are skipped with a warning.
+fn read_arrays(
+    d: &ArrayDecoder<'_, '_>,
+    piece: &XmlPiece,
+    k: usize,
+    cells: bool,
+    warnings: &mut Vec<String>,
+) -> Result<Vec<RawArray>, VtkError> {
+    let (place, arrays, tuples) = if cells {
+        ("CellData", &piece.cell_data, piece.ncells)
+    } else {
+        ("PointData", &piece.point_data, piece.npoints)
+    };
+    let mut out = Vec::new();
+    for (i, a) in arrays.iter().enumerate() {
+        let section = section(a, k, place);
+        if Scalar::from_vtu_name(&a.type_name).is_none() {
+            warnings.push(format!(
+                "{section}: skipped, type \"{}\" is not numeric",
+                a.type_name
+            ));
+            continue;
+        }
+        let values = d.floats(a, &section)?;
+        let what = format!("values ({tuples} tuples of {} components)", a.components);
+        expect_count(
+            d.file,
+            &section,
+            &what,
+            tuples.saturating_mul(a.components),
+            values.len(),
+        )?;
+        out.push(RawArray {
+            name: a.name.clone().unwrap_or_else(|| format!("{place}_{i}")),
+            components: a.components,
+            values,
+            section,
+        });
+    }
+    Ok(out)
+}
+
+/// Concatenates the arrays of the non-empty pieces; an array missing from
+/// some piece (by name and component count) is dropped with a warning.
+fn merge(per_piece: Vec<Vec<RawArray>>, warnings: &mut Vec<String>) -> Vec<RawArray> {
+    let mut pieces = per_piece.into_iter();
+    let Some(mut merged) = pieces.next() else {
+        return Vec::new();
+    };
+    for mut piece in pieces {
+        merged.retain_mut(|array| {
+            let found = piece
+                .iter()
+                .position(|a| a.name == array.name && a.components == array.components);
+            match found {
+                Some(j) => {
+                    let other = piece.swap_remove(j);
+                    array.values.extend(other.values);
+                    true
+                }
+                None => {
+                    warnings.push(format!("{}: not in every Piece, dropped", array.section));
+                    false
+                }
+            }
+        });
+        for extra in piece {
+            warnings.push(format!("{}: not in every Piece, dropped", extra.section));
+        }
+    }
+    merged
+}
