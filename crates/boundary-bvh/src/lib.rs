@@ -1,7 +1,80 @@
 //! A BVH (obvhs) over the boundary faces of a tetrahedral mesh, answering
 //! "which boundary face does this ray enter the mesh through first, after t".
 //!
-//! API CONTRACT (skeleton, filled in by the BVH work): `BoundaryBvh::build`,
-//! `first_entry`, and `brute_force_first_entry` with the same contract.
+//! Every query decides crossings with the shared [`watertight`] predicate, so
+//! the BVH, the brute-force scan and the GPU layout's CPU twin agree bit for
+//! bit, and agree with the ray caster about which faces a ray crosses.
+//!
+//! - [`BoundaryBvh::build`] builds over `Topology::boundary_faces` with one of
+//!   the obvhs presets ([`BuildPreset`]);
+//! - [`BoundaryBvh::first_entry`] / [`brute_force_first_entry`]: the nearest
+//!   face the ray enters through in `[t_min, t_max]`;
+//! - [`BoundaryBvh::flatten`]: a `#[repr(C)]` node array for the GPU kernel,
+//!   with [`FlatBvh::first_entry`] as its CPU twin.
 
+mod brute;
+mod build;
+mod flat;
+mod preset;
+mod slab;
+mod traverse;
 pub mod watertight;
+
+pub use brute::brute_force_first_entry;
+pub use build::{BoundaryBvh, BvhStats};
+pub use flat::{FlatBvh, FlatNode, FlatPrim, FLAT_STACK_SIZE};
+pub use preset::BuildPreset;
+
+/// The boundary face a ray enters the mesh through.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EntryHit {
+    /// Index into `Topology::boundary_faces`.
+    pub face: u32,
+    /// Distance along the ray (its unit direction) to the crossing.
+    pub t: f32,
+}
+
+/// Why a BVH could not be built or flattened.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum BvhError {
+    #[error("the mesh has no boundary faces to build a BVH over")]
+    NoBoundaryFaces,
+    #[error("boundary face {face} refers to point {point}, but the mesh has {points} points")]
+    PointOutOfRange {
+        face: u32,
+        point: u32,
+        points: usize,
+    },
+    #[error("point {point} (on boundary face {face}) has a non-finite coordinate {coords:?}")]
+    NonFinitePoint {
+        face: u32,
+        point: u32,
+        coords: [f32; 3],
+    },
+    #[error("{faces} boundary faces exceed the u32 index range of the BVH")]
+    TooManyFaces { faces: usize },
+    #[error(
+        "BVH depth {depth} exceeds the GPU traversal stack of {limit} entries; \
+         use the CPU traversal or a different build preset"
+    )]
+    TooDeepForGpu { depth: u32, limit: u32 },
+    #[error("unknown BVH build preset {0:?} (expected one of: {names})", names = BuildPreset::names())]
+    UnknownPreset(String),
+}
+
+/// A ray with a non-finite origin or direction, or a NaN range, crosses
+/// nothing by contract (its distances would be meaningless).
+#[inline]
+pub(crate) fn query_is_valid(ray: &watertight::RayFrame, t_min: f32, t_max: f32) -> bool {
+    ray.origin.is_finite() && ray.dir.is_finite() && !t_min.is_nan() && !t_max.is_nan()
+}
+
+/// Whether `(t, face)` beats the best hit so far: nearer, or as near with a
+/// lower face index, so every traversal order returns the same hit.
+#[inline]
+pub(crate) fn is_better(t: f32, face: u32, best: Option<EntryHit>) -> bool {
+    match best {
+        None => true,
+        Some(b) => t < b.t || (t == b.t && face < b.face),
+    }
+}

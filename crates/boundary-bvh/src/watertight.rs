@@ -140,3 +140,51 @@ pub fn crossing_distance(a: RayPoint, b: RayPoint, c: RayPoint) -> f32 {
 pub fn edge_function(a: RayPoint, b: RayPoint) -> f64 {
     f64::from(a.x) * f64::from(b.y) - f64::from(a.y) * f64::from(b.x)
 }
+
+/// Where the ray crosses the plane of `(a, b, c)`: the distance, bit for bit
+/// that of [`crossing_distance`], and the barycentric weights of the
+/// crossing point (summing to 1), to interpolate vertex data (scalars) at
+/// it. Weights are the normalised edge functions, as in
+/// [`crossing_distance`]; for a ray lying in the face's plane the nearest
+/// vertex, whose distance is returned, gets all the weight.
+#[inline]
+pub fn crossing_barycentric(a: RayPoint, b: RayPoint, c: RayPoint) -> (f32, [f64; 3]) {
+    let wa = edge_function(b, c);
+    let wb = edge_function(c, a);
+    let wc = edge_function(a, b);
+    let sum = wa + wb + wc;
+    let lo = a.z.min(b.z).min(c.z);
+    let hi = a.z.max(b.z).max(c.z);
+    if sum == 0.0 {
+        let weights = if lo == a.z {
+            [1.0, 0.0, 0.0]
+        } else if lo == b.z {
+            [0.0, 1.0, 0.0]
+        } else {
+            [0.0, 0.0, 1.0]
+        };
+        return (lo, weights);
+    }
+    let t = (wa * f64::from(a.z) + wb * f64::from(b.z) + wc * f64::from(c.z)) / sum;
+    let inv = 1.0 / sum;
+    ((t as f32).clamp(lo, hi), [wa * inv, wb * inv, wc * inv])
+}
+
+impl RayFrame {
+    /// [`RayFrame::project`] of four points at once, lane-parallel (the same
+    /// operations in the same order per point, so the same bits).
+    #[inline]
+    pub fn project4(&self, p: [Vec3; 4]) -> [RayPoint; 4] {
+        let o = self.origin;
+        let dx = glam::Vec4::new(p[0].x, p[1].x, p[2].x, p[3].x) - o.x;
+        let dy = glam::Vec4::new(p[0].y, p[1].y, p[2].y, p[3].y) - o.y;
+        let dz = glam::Vec4::new(p[0].z, p[1].z, p[2].z, p[3].z) - o.z;
+        let along = |a: Vec3| dx * a.x + dy * a.y + dz * a.z;
+        let (x, y, z) = (along(self.u), along(self.v), along(self.dir));
+        std::array::from_fn(|i| RayPoint {
+            x: x[i],
+            y: y[i],
+            z: z[i],
+        })
+    }
+}
