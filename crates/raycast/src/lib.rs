@@ -1,2 +1,24 @@
-//! Cameras (VTK conventions), float images with EXR/PNG output, and the CPU
-//! reference ray caster that walks a tetrahedral mesh cell to cell.
+//! Cameras (VTK conventions), float images with EXR/PNG output, synthetic
+//! test meshes, and the CPU reference ray caster that walks a tetrahedral
+//! mesh cell to cell.
+//!
+//! - [`Scene`]: a mesh with its topology, boundary BVH and active field;
+//! - [`render_cpu`]: one ray per pixel; each enters the mesh through the
+//!   boundary face the BVH finds, walks tet to tet through exit faces chosen
+//!   by the shared watertight predicate, and composites the integrated
+//!   segments front to back.
+
+pub mod camera;
+mod cpu;
+pub mod image;
+mod scene;
+pub mod scenes;
+mod walk;
+
+pub use camera::{Camera, CameraError, PixelRays, ViewBasis};
+pub use cpu::{
+    render_cpu, render_cpu_with_progress, RenderError, RenderOptions, RenderOutput, RenderStats,
+};
+pub use image::{Image, ImageError};
+pub use scene::{Scene, SceneError};
+pub use walk::SegmentIntegrator;

@@ -1,0 +1,80 @@
+//! Times CPU frames of the Blunt Fin (assets/bluntfin{xyz,q}.bin).
+//! Usage: bluntfin_frame [size] [frames] [threads]
+
+use std::path::Path;
+use std::time::Instant;
+
+use glam::Vec3;
+use tetray_boundary_bvh::BuildPreset;
+use tetray_mesh::{load, LoadOptions};
+use tetray_raycast::{render_cpu, Camera, RenderOptions, Scene, SegmentIntegrator};
+
+struct Absorb {
+    cheap: bool,
+}
+impl SegmentIntegrator for Absorb {
+    fn segment(&self, s_front: f32, s_back: f32, length: f32) -> (Vec3, Vec3) {
+        let tau = 0.5 * (s_front + s_back) * 0.2;
+        let t = if self.cheap {
+            1.0 - tau * length * 1e-3
+        } else {
+            (-tau * length).exp()
+        };
+        (Vec3::splat(1.0 - t), Vec3::splat(t))
+    }
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let size: u32 = args.get(1).map_or(512, |s| s.parse().unwrap());
+    let frames: usize = args.get(2).map_or(5, |s| s.parse().unwrap());
+    let threads: usize = args.get(3).map_or(2, |s| s.parse().unwrap());
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets");
+    let loaded = load(&root.join("bluntfinxyz.bin"), &LoadOptions::default()).unwrap();
+    let t = Instant::now();
+    let scene = Scene::from_loaded(loaded, "density", BuildPreset::default()).unwrap();
+    println!(
+        "scene: {} tets, {} boundary faces, {:.3}s",
+        scene.tet_count(),
+        scene.topology.boundary_faces.len(),
+        t.elapsed().as_secs_f64()
+    );
+    let (lo, hi) = scene.bounds();
+    let mut camera = Camera::reset_to_bounds(lo, hi).unwrap();
+    camera.azimuth(30.0).unwrap();
+    camera.elevation(20.0).unwrap();
+    camera.orthogonalize_view_up().unwrap();
+    let opts = RenderOptions {
+        width: size,
+        height: size,
+        threads: Some(threads),
+        ..RenderOptions::default()
+    };
+    let mut best = f64::INFINITY;
+    for _ in 0..frames {
+        let out = render_cpu(
+            &scene,
+            &camera,
+            &Absorb {
+                cheap: std::env::var_os("NOEXP").is_some(),
+            },
+            &opts,
+        )
+        .unwrap();
+        let s = out.stats;
+        best = best.min(s.elapsed.as_secs_f64());
+        println!(
+            "{:.4}s rays {} hit {} segs {} steps {} entries {} fail {} bound {} -> {:.1} Mseg/s",
+            s.elapsed.as_secs_f64(),
+            s.rays,
+            s.rays_hit,
+            s.segments,
+            s.steps,
+            s.entries,
+            s.walk_failures,
+            s.steps_bound_hits,
+            s.segments_per_second() / 1e6
+        );
+    }
+    println!("best {best:.4}s");
+}

@@ -1,0 +1,245 @@
+//! The CPU reference renderer: one ray per pixel, tiles in parallel (rayon).
+
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::{Duration, Instant};
+
+use glam::Vec3;
+use rayon::prelude::*;
+
+use crate::camera::{Camera, CameraError, PixelRays};
+use crate::image::{Image, ImageError};
+use crate::scene::Scene;
+use crate::walk::{trace, RayCounters, SegmentIntegrator, WalkLimits};
+
+/// Tile edge in pixels: neighbouring rays in both directions walk the same
+/// tetrahedra, so a square tile keeps them in cache.
+const TILE: usize = 16;
+
+/// What to render and how.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RenderOptions {
+    pub width: u32,
+    pub height: u32,
+    /// Stop a ray once its opacity `1 - mean(T)` reaches this; `1` (or more)
+    /// disables early termination.
+    pub early_termination: f32,
+    /// Bound on tetrahedra visited per ray; `None`: the tetrahedron count
+    /// plus 1024 (a ray enters each convex cell at most once, plus cells it
+    /// only touches where it runs through vertices or edges).
+    pub max_steps_per_ray: Option<u32>,
+    /// Worker threads; `None`: rayon's global pool.
+    pub threads: Option<usize>,
+}
+
+impl Default for RenderOptions {
+    fn default() -> Self {
+        RenderOptions {
+            width: 512,
+            height: 512,
+            early_termination: 1.0,
+            max_steps_per_ray: None,
+            threads: None,
+        }
+    }
+}
+
+/// Counters of one frame.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct RenderStats {
+    /// Rays cast (one per pixel).
+    pub rays: u64,
+    /// Rays that entered the mesh at least once.
+    pub rays_hit: u64,
+    /// Segments integrated (positive length, in front of the eye).
+    pub segments: u64,
+    /// Tetrahedra visited.
+    pub steps: u64,
+    /// BVH queries that found a boundary face (entries and re-entries).
+    pub entries: u64,
+    /// Rays stopped by the step bound (a correct mesh never hits it).
+    pub steps_bound_hits: u64,
+    /// Rays stopped in a tetrahedron without an exit face (degenerate).
+    pub walk_failures: u64,
+    /// Whether rays started inside the mesh's bounds (and were integrated
+    /// from their origin, walking from the first entry behind it).
+    pub eye_inside_bounds: bool,
+    pub elapsed: Duration,
+}
+
+impl RenderStats {
+    fn add(&mut self, ray: &RayCounters) {
+        self.rays += 1;
+        self.rays_hit += u64::from(ray.hit);
+        self.segments += ray.segments;
+        self.steps += ray.steps;
+        self.entries += ray.entries;
+        self.steps_bound_hits += u64::from(ray.step_bound_hit);
+        self.walk_failures += u64::from(ray.walk_failure);
+    }
+
+    fn merge(mut self, other: RenderStats) -> RenderStats {
+        self.rays += other.rays;
+        self.rays_hit += other.rays_hit;
+        self.segments += other.segments;
+        self.steps += other.steps;
+        self.entries += other.entries;
+        self.steps_bound_hits += other.steps_bound_hits;
+        self.walk_failures += other.walk_failures;
+        self
+    }
+
+    /// Integrated segments per second of wall time.
+    pub fn segments_per_second(&self) -> f64 {
+        self.segments as f64 / self.elapsed.as_secs_f64().max(1e-12)
+    }
+}
+
+/// A rendered frame.
+#[derive(Debug, Clone)]
+pub struct RenderOutput {
+    pub image: Image,
+    pub stats: RenderStats,
+}
+
+/// Why a frame could not be rendered.
+#[derive(Debug, thiserror::Error)]
+pub enum RenderError {
+    #[error(transparent)]
+    Camera(#[from] CameraError),
+    #[error(transparent)]
+    Image(#[from] ImageError),
+    #[error("early termination threshold {0} must be in (0, 1] (1 disables it)")]
+    BadEarlyTermination(f32),
+    #[error("cannot start {threads} render threads: {message}")]
+    Threads { threads: usize, message: String },
+}
+
+/// Renders `scene` seen by `camera`, integrating segments with `integrator`.
+pub fn render_cpu<I: SegmentIntegrator + ?Sized>(
+    scene: &Scene,
+    camera: &Camera,
+    integrator: &I,
+    opts: &RenderOptions,
+) -> Result<RenderOutput, RenderError> {
+    render_cpu_with_progress(scene, camera, integrator, opts, None)
+}
+
+/// [`render_cpu`], calling `progress(rows_done, rows_total)` as bands of
+/// rows finish (from worker threads, in no particular order of bands).
+pub fn render_cpu_with_progress<I: SegmentIntegrator + ?Sized>(
+    scene: &Scene,
+    camera: &Camera,
+    integrator: &I,
+    opts: &RenderOptions,
+    progress: Option<&(dyn Fn(usize, usize) + Sync)>,
+) -> Result<RenderOutput, RenderError> {
+    if opts.early_termination.is_nan() || opts.early_termination <= 0.0 {
+        return Err(RenderError::BadEarlyTermination(opts.early_termination));
+    }
+    let rays = camera.pixel_rays(opts.width, opts.height)?;
+    let mut image = Image::new(opts.width, opts.height)?;
+    let default_steps = scene.tet_count() as u64 + 1024;
+    let limits = WalkLimits {
+        stop_below_sum: 3.0 * (1.0 - opts.early_termination),
+        max_steps: opts.max_steps_per_ray.map_or(default_steps, u64::from),
+    };
+    let (lo, hi) = scene.bounds();
+    let job = Frame {
+        scene,
+        rays: &rays,
+        integrator,
+        limits,
+        orthographic: camera.parallel_scale.is_some(),
+        eye_inside: camera.is_inside_bounds(lo, hi),
+        bounds: (lo, hi),
+        progress,
+        rows_done: AtomicUsize::new(0),
+        width: opts.width as usize,
+        height: opts.height as usize,
+    };
+    let start = Instant::now();
+    let mut stats = match opts.threads {
+        None => job.run(&mut image.rgba),
+        Some(threads) => rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .map_err(|e| RenderError::Threads {
+                threads,
+                message: e.to_string(),
+            })?
+            .install(|| job.run(&mut image.rgba)),
+    };
+    stats.elapsed = start.elapsed();
+    stats.eye_inside_bounds = job.eye_inside;
+    Ok(RenderOutput { image, stats })
+}
+
+/// Everything the workers share for one frame.
+struct Frame<'a, I: ?Sized> {
+    scene: &'a Scene,
+    rays: &'a PixelRays,
+    integrator: &'a I,
+    limits: WalkLimits,
+    orthographic: bool,
+    /// Perspective eye inside the mesh bounds.
+    eye_inside: bool,
+    bounds: (Vec3, Vec3),
+    progress: Option<&'a (dyn Fn(usize, usize) + Sync)>,
+    rows_done: AtomicUsize,
+    width: usize,
+    height: usize,
+}
+
+impl<I: SegmentIntegrator + ?Sized> Frame<'_, I> {
+    fn run(&self, pixels: &mut [[f32; 4]]) -> RenderStats {
+        pixels
+            .par_chunks_mut(self.width * TILE)
+            .enumerate()
+            .map(|(band, rows)| self.band(band * TILE, rows))
+            .reduce(RenderStats::default, RenderStats::merge)
+    }
+
+    /// Rows `y0..` of the image (`rows` holds whole rows), tile by tile.
+    fn band(&self, y0: usize, rows: &mut [[f32; 4]]) -> RenderStats {
+        let mut stats = RenderStats::default();
+        let mut skip = Vec::new();
+        let band_rows = rows.len() / self.width;
+        for x0 in (0..self.width).step_by(TILE) {
+            for dy in 0..band_rows {
+                for x in x0..(x0 + TILE).min(self.width) {
+                    let y = y0 + dy;
+                    let ray = self.rays.ray(x as u32, y as u32);
+                    // A ray whose origin may be inside the mesh walks from
+                    // the first entry of its whole line (behind the origin
+                    // too) so it starts in the cell holding the origin.
+                    let inside = if self.orthographic {
+                        let (lo, hi) = self.bounds;
+                        ray.origin.cmpge(lo).all() && ray.origin.cmple(hi).all()
+                    } else {
+                        self.eye_inside
+                    };
+                    let t_start = if inside { f32::NEG_INFINITY } else { 0.0 };
+                    let mut counters = RayCounters::default();
+                    let light = trace(
+                        self.scene,
+                        &ray,
+                        t_start,
+                        self.integrator,
+                        self.limits,
+                        &mut skip,
+                        &mut counters,
+                    );
+                    stats.add(&counters);
+                    let alpha = 1.0 - light.transmittance.element_sum() / 3.0;
+                    let c = light.color;
+                    rows[dy * self.width + x] = [c.x, c.y, c.z, alpha];
+                }
+            }
+        }
+        if let Some(progress) = self.progress {
+            let done = self.rows_done.fetch_add(band_rows, Ordering::Relaxed) + band_rows;
+            progress(done, self.height);
+        }
+        stats
+    }
+}

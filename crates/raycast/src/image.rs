@@ -1,0 +1,146 @@
+//! Float RGBA images with premultiplied colour, written as linear EXR or as
+//! 8-bit PNG composited over a background.
+
+use std::path::{Path, PathBuf};
+
+use glam::Vec3;
+
+/// Why an image could not be made or written.
+#[derive(Debug, thiserror::Error)]
+pub enum ImageError {
+    #[error("cannot write image {path}: {source}")]
+    Write {
+        path: PathBuf,
+        #[source]
+        source: image::ImageError,
+    },
+    #[error("image size {width}x{height} needs {expected} pixels, got {actual}")]
+    SizeMismatch {
+        width: u32,
+        height: u32,
+        expected: usize,
+        actual: usize,
+    },
+    #[error("image size {width}x{height} is too large")]
+    TooLarge { width: u32, height: u32 },
+}
+
+/// A rendered image: `rgba[y * width + x]`, row 0 at the top.
+///
+/// Colour is premultiplied by alpha (it is the light reaching the eye from
+/// the volume, eq. 2.1's integral); alpha is `1 - transmittance`. When the
+/// transmittance has a colour (RGB attenuation) alpha is `1 - mean(T_r, T_g,
+/// T_b)`: a single alpha cannot express coloured attenuation, and the mean
+/// keeps compositing over a grey background exact.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Image {
+    pub width: u32,
+    pub height: u32,
+    pub rgba: Vec<[f32; 4]>,
+}
+
+impl Image {
+    /// A transparent black image.
+    pub fn new(width: u32, height: u32) -> Result<Image, ImageError> {
+        let count = pixel_count(width, height)?;
+        Ok(Image {
+            width,
+            height,
+            rgba: vec![[0.0; 4]; count],
+        })
+    }
+
+    /// Wraps existing pixels, checking their number.
+    pub fn from_pixels(width: u32, height: u32, rgba: Vec<[f32; 4]>) -> Result<Image, ImageError> {
+        let expected = pixel_count(width, height)?;
+        if rgba.len() != expected {
+            return Err(ImageError::SizeMismatch {
+                width,
+                height,
+                expected,
+                actual: rgba.len(),
+            });
+        }
+        Ok(Image {
+            width,
+            height,
+            rgba,
+        })
+    }
+
+    /// The pixel at column `x`, row `y` (row 0 at the top), if inside.
+    pub fn pixel(&self, x: u32, y: u32) -> Option<[f32; 4]> {
+        if x >= self.width || y >= self.height {
+            return None;
+        }
+        self.rgba
+            .get(y as usize * self.width as usize + x as usize)
+            .copied()
+    }
+
+    /// Linear float RGBA OpenEXR, premultiplied (EXR's own convention).
+    pub fn write_exr(&self, path: &Path) -> Result<(), ImageError> {
+        let flat: Vec<f32> = self.rgba.iter().flatten().copied().collect();
+        let buffer = image::Rgba32FImage::from_raw(self.width, self.height, flat).ok_or(
+            ImageError::SizeMismatch {
+                width: self.width,
+                height: self.height,
+                expected: self.width as usize * self.height as usize,
+                actual: self.rgba.len(),
+            },
+        )?;
+        buffer
+            .save_with_format(path, image::ImageFormat::OpenExr)
+            .map_err(|source| ImageError::Write {
+                path: path.to_path_buf(),
+                source,
+            })
+    }
+
+    /// 8-bit RGB PNG of the image composited over `background`
+    /// (`c + (1 - a) * bg`), clamped to [0, 1], with no sRGB transform: the
+    /// stored values are the linear ones, as VTK's renders store them.
+    pub fn write_png(&self, path: &Path, background: Vec3) -> Result<(), ImageError> {
+        let bytes: Vec<u8> = self
+            .rgba
+            .iter()
+            .flat_map(|&p| composite_over(p, background).map(to_u8))
+            .collect();
+        let buffer = image::RgbImage::from_raw(self.width, self.height, bytes).ok_or(
+            ImageError::SizeMismatch {
+                width: self.width,
+                height: self.height,
+                expected: self.width as usize * self.height as usize,
+                actual: self.rgba.len(),
+            },
+        )?;
+        buffer
+            .save_with_format(path, image::ImageFormat::Png)
+            .map_err(|source| ImageError::Write {
+                path: path.to_path_buf(),
+                source,
+            })
+    }
+}
+
+/// Premultiplied `rgba` over an opaque `background`, unclamped.
+pub fn composite_over(rgba: [f32; 4], background: Vec3) -> [f32; 3] {
+    let keep = 1.0 - rgba[3];
+    [
+        rgba[0] + keep * background.x,
+        rgba[1] + keep * background.y,
+        rgba[2] + keep * background.z,
+    ]
+}
+
+fn to_u8(v: f32) -> u8 {
+    // NaN clamps to 0 (`as` saturates and maps NaN to 0).
+    (v.clamp(0.0, 1.0) * 255.0).round() as u8
+}
+
+fn pixel_count(width: u32, height: u32) -> Result<usize, ImageError> {
+    (width as usize)
+        .checked_mul(height as usize)
+        .filter(|&n| n <= usize::MAX / 16)
+        .ok_or(ImageError::TooLarge { width, height })
+}

@@ -1,0 +1,256 @@
+//! A mesh made ready for ray casting: topology, boundary BVH, the active
+//! scalar field, and a compact copy of what the walk reads per step.
+
+use glam::Vec3;
+use tetray_boundary_bvh::{BoundaryBvh, BuildPreset, BvhError};
+use tetray_mesh::{LoadedMesh, TetMesh, Topology, FACE_VERTICES, NO_NEIGHBOR};
+
+/// Why a [`Scene`] could not be made from a mesh.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SceneError {
+    #[error("the mesh has no point field {name:?} (fields: {available})")]
+    UnknownField { name: String, available: String },
+    #[error("field {name:?} has {values} values for {points} points")]
+    FieldLength {
+        name: String,
+        values: usize,
+        points: usize,
+    },
+    #[error("field {name:?} is not finite at point {point} ({value})")]
+    NonFiniteScalar {
+        name: String,
+        point: usize,
+        value: f32,
+    },
+    #[error("point {point} is not finite: {coords:?}")]
+    NonFinitePoint { point: usize, coords: [f32; 3] },
+    #[error("tetrahedron {tet} refers to point {point}, but the mesh has {points} points")]
+    PointOutOfRange {
+        tet: usize,
+        point: u32,
+        points: usize,
+    },
+    #[error("the topology has {topology} tetrahedra, the mesh {mesh}")]
+    TopologyMismatch { topology: usize, mesh: usize },
+    #[error("the mesh has {0} tetrahedra; the walk indexes at most 2^30 - 1")]
+    TooManyTets(usize),
+    #[error("face {face} of tetrahedron {tet} has neighbour {neighbor}, which does not share its three points")]
+    BadNeighbor {
+        tet: usize,
+        face: usize,
+        neighbor: u32,
+    },
+    #[error("boundary face {face} does not match face {local_face} of tetrahedron {tet}")]
+    BadBoundaryFace {
+        face: usize,
+        tet: u32,
+        local_face: u8,
+    },
+    #[error("the mesh has no tetrahedra")]
+    Empty,
+    #[error(transparent)]
+    Bvh(#[from] BvhError),
+}
+
+/// One tetrahedron as the walk reads it: 32 bytes, one load per step.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[repr(C, align(32))]
+pub(crate) struct WalkTet {
+    /// Point indices.
+    pub verts: [u32; 4],
+    /// Across local face `f`: `(neighbour << 2) | its local face index of
+    /// the shared face`, or [`NO_NEIGHBOR`].
+    pub next: [u32; 4],
+}
+
+/// A mesh ready to be ray cast with one active scalar field.
+pub struct Scene {
+    pub mesh: TetMesh,
+    pub topology: Topology,
+    pub bvh: BoundaryBvh,
+    /// The active field's name and values (one per point).
+    pub field: String,
+    pub scalar: Vec<f32>,
+    pub(crate) walk: Vec<WalkTet>,
+    /// Per point: position and active scalar, read together.
+    pub(crate) points: Vec<[f32; 4]>,
+    pub(crate) bounds: (Vec3, Vec3),
+}
+
+impl Scene {
+    /// Validates what the walk relies on (indices in range, finite data,
+    /// face neighbours sharing their face, boundary faces matching their
+    /// tetrahedra), so that rendering cannot fail on the mesh, and builds
+    /// the boundary BVH with `preset`.
+    pub fn new(
+        mesh: TetMesh,
+        topology: Topology,
+        field: &str,
+        preset: BuildPreset,
+    ) -> Result<Scene, SceneError> {
+        let scalar = active_field(&mesh, field)?;
+        if mesh.tets.is_empty() {
+            return Err(SceneError::Empty);
+        }
+        if mesh.tets.len() >= 1 << 30 {
+            return Err(SceneError::TooManyTets(mesh.tets.len()));
+        }
+        if topology.neighbors.len() != mesh.tets.len() {
+            return Err(SceneError::TopologyMismatch {
+                topology: topology.neighbors.len(),
+                mesh: mesh.tets.len(),
+            });
+        }
+        if let Some((point, p)) = mesh.points.iter().enumerate().find(|(_, p)| !p.is_finite()) {
+            return Err(SceneError::NonFinitePoint {
+                point,
+                coords: p.to_array(),
+            });
+        }
+        for (tet, verts) in mesh.tets.iter().enumerate() {
+            if let Some(&point) = verts.iter().find(|&&v| v as usize >= mesh.points.len()) {
+                return Err(SceneError::PointOutOfRange {
+                    tet,
+                    point,
+                    points: mesh.points.len(),
+                });
+            }
+        }
+        let walk = walk_tets(&mesh, &topology)?;
+        check_boundary_faces(&mesh, &topology)?;
+        let bvh = BoundaryBvh::build(&mesh, &topology, preset)?;
+        let points = mesh
+            .points
+            .iter()
+            .zip(&scalar)
+            .map(|(p, &s)| [p.x, p.y, p.z, s])
+            .collect();
+        let bounds = mesh.bounds();
+        Ok(Scene {
+            mesh,
+            topology,
+            bvh,
+            field: field.to_string(),
+            scalar,
+            walk,
+            points,
+            bounds,
+        })
+    }
+
+    /// [`Scene::new`] on a mesh loaded by `tetray_mesh::load` / `prepare`
+    /// (its load report is dropped; keep it beforehand if needed).
+    pub fn from_loaded(
+        loaded: LoadedMesh,
+        field: &str,
+        preset: BuildPreset,
+    ) -> Result<Scene, SceneError> {
+        Scene::new(loaded.mesh, loaded.topology, field, preset)
+    }
+
+    /// Axis-aligned bounds of the mesh points.
+    pub fn bounds(&self) -> (Vec3, Vec3) {
+        self.bounds
+    }
+
+    /// Number of tetrahedra.
+    pub fn tet_count(&self) -> usize {
+        self.walk.len()
+    }
+}
+
+fn active_field(mesh: &TetMesh, name: &str) -> Result<Vec<f32>, SceneError> {
+    let field = mesh.field(name).ok_or_else(|| SceneError::UnknownField {
+        name: name.to_string(),
+        available: mesh
+            .fields
+            .iter()
+            .map(|f| format!("{:?}", f.name))
+            .collect::<Vec<_>>()
+            .join(", "),
+    })?;
+    if field.values.len() != mesh.points.len() {
+        return Err(SceneError::FieldLength {
+            name: name.to_string(),
+            values: field.values.len(),
+            points: mesh.points.len(),
+        });
+    }
+    if let Some((point, &value)) = field
+        .values
+        .iter()
+        .enumerate()
+        .find(|(_, v)| !v.is_finite())
+    {
+        return Err(SceneError::NonFiniteScalar {
+            name: name.to_string(),
+            point,
+            value,
+        });
+    }
+    Ok(field.values.clone())
+}
+
+/// Packs vertices and neighbours, finding for every shared face the
+/// neighbour's local index of it (the neighbour's vertex off the face): the
+/// walk then knows which vertex of the next tetrahedron is new.
+fn walk_tets(mesh: &TetMesh, topology: &Topology) -> Result<Vec<WalkTet>, SceneError> {
+    let mut walk = Vec::with_capacity(mesh.tets.len());
+    for (tet, (verts, neighbors)) in mesh.tets.iter().zip(&topology.neighbors).enumerate() {
+        let mut next = [NO_NEIGHBOR; 4];
+        for (face, &neighbor) in neighbors.iter().enumerate() {
+            if neighbor == NO_NEIGHBOR {
+                continue;
+            }
+            let bad = SceneError::BadNeighbor {
+                tet,
+                face,
+                neighbor,
+            };
+            let other = mesh.tets.get(neighbor as usize).ok_or(bad.clone())?;
+            let shared = FACE_VERTICES[face].map(|v| verts[v]);
+            let mut off = (0..4).filter(|&i| !shared.contains(&other[i]));
+            let (Some(local), None) = (off.next(), off.next()) else {
+                return Err(bad);
+            };
+            if neighbor as usize == tet {
+                return Err(bad);
+            }
+            next[face] = (neighbor << 2) | local as u32;
+        }
+        walk.push(WalkTet {
+            verts: *verts,
+            next,
+        });
+    }
+    Ok(walk)
+}
+
+/// The walk starts from a boundary face's tetrahedron and local face, and
+/// trusts that the BVH tested the same three points in the same cyclic
+/// order.
+fn check_boundary_faces(mesh: &TetMesh, topology: &Topology) -> Result<(), SceneError> {
+    for (face, bf) in topology.boundary_faces.iter().enumerate() {
+        let bad = SceneError::BadBoundaryFace {
+            face,
+            tet: bf.tet,
+            local_face: bf.local_face,
+        };
+        let (Some(verts), Some(local)) = (
+            mesh.tets.get(bf.tet as usize),
+            FACE_VERTICES.get(usize::from(bf.local_face)),
+        ) else {
+            return Err(bad);
+        };
+        let own = local.map(|v| verts[v]);
+        let rotation = |r: usize| [own[r % 3], own[(r + 1) % 3], own[(r + 2) % 3]];
+        if !(0..3).any(|r| rotation(r) == bf.vertices) {
+            return Err(bad);
+        }
+        let neighbor = topology.neighbors[bf.tet as usize][usize::from(bf.local_face)];
+        if neighbor != NO_NEIGHBOR {
+            return Err(bad);
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,326 @@
+//! One ray through the mesh: enter through the boundary (BVH), walk tet to
+//! tet across exit faces, integrate each segment, composite front to back
+//! (dissertation ch. 2: the ray integral is a product of segment
+//! transmittances and a sum of attenuated segment emissions).
+
+use glam::Vec3;
+use tetray_boundary_bvh::watertight::{
+    crossing_barycentric, edge_function, edge_sign, RayFrame, RayPoint,
+};
+use tetray_mesh::{FACE_VERTICES, NO_NEIGHBOR};
+
+use crate::scene::Scene;
+
+/// The light of one ray segment, front (nearer the eye) to back.
+pub trait SegmentIntegrator: Sync {
+    /// Emitted light reaching the segment's front end and the segment's
+    /// transmittance, for a scalar linear from `s_front` to `s_back` over
+    /// `length` world units.
+    fn segment(&self, s_front: f32, s_back: f32, length: f32) -> (Vec3, Vec3);
+}
+
+/// Limits of one walk.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct WalkLimits {
+    /// Stop once the sum of the transmittance channels is at most this:
+    /// `3 (1 - early_termination)`, so `1 - mean(T) >= early_termination`.
+    pub stop_below_sum: f32,
+    pub max_steps: u64,
+}
+
+/// What one ray did, summed into the frame's statistics.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct RayCounters {
+    pub hit: bool,
+    pub segments: u64,
+    pub entries: u64,
+    pub steps: u64,
+    pub step_bound_hit: bool,
+    pub walk_failure: bool,
+}
+
+/// Light gathered along one ray: premultiplied colour and transmittance.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct RayLight {
+    pub color: Vec3,
+    pub transmittance: Vec3,
+}
+
+/// For apex `a` (the vertex opposite the entry face): its three other
+/// vertices in increasing order, and for each pattern of the signs of the
+/// edges apex -> k (bit `i` set when the edge to the `i`-th of them is
+/// positive) the exit face with the vertices following and preceding the
+/// apex in that face's counter-clockwise order, or `None` (all signs equal:
+/// only possible in a degenerate tetrahedron).
+struct ApexTable {
+    others: [usize; 3],
+    exits: [Option<(usize, usize, usize)>; 8],
+}
+
+const APEX_TABLES: [ApexTable; 4] = apex_tables();
+
+/// The exit face has all three edge signs positive. Its edge on the entry
+/// face is already positive (adjacent faces run a shared edge in opposite
+/// directions, signs are antisymmetric, and every entry face is all
+/// negative), so face `f` is the exit exactly when the edge apex -> next is
+/// positive and apex -> prev negative: three edge signs decide the exit.
+const fn apex_tables() -> [ApexTable; 4] {
+    let mut tables = [
+        ApexTable {
+            others: [1, 2, 3],
+            exits: [None; 8],
+        },
+        ApexTable {
+            others: [0, 2, 3],
+            exits: [None; 8],
+        },
+        ApexTable {
+            others: [0, 1, 3],
+            exits: [None; 8],
+        },
+        ApexTable {
+            others: [0, 1, 2],
+            exits: [None; 8],
+        },
+    ];
+    let mut apex = 0;
+    while apex < 4 {
+        let others = tables[apex].others;
+        let mut code = 0;
+        while code < 8 {
+            let mut f = 0;
+            while f < 4 {
+                if f != apex {
+                    let v = FACE_VERTICES[f];
+                    let mut i = 0;
+                    while v[i] != apex {
+                        i += 1;
+                    }
+                    let (next, prev) = (v[(i + 1) % 3], v[(i + 2) % 3]);
+                    if bit_of(others, code, next) && !bit_of(others, code, prev) {
+                        tables[apex].exits[code] = Some((f, next, prev));
+                    }
+                }
+                f += 1;
+            }
+            code += 1;
+        }
+        apex += 1;
+    }
+    tables
+}
+
+/// Whether `code` marks the edge to vertex `k` (one of `others`) positive.
+const fn bit_of(others: [usize; 3], code: usize, k: usize) -> bool {
+    let mut i = 0;
+    while others[i] != k {
+        i += 1;
+    }
+    code & (1 << i) != 0
+}
+
+/// A point projected into the ray frame, with its scalar.
+#[inline]
+fn project(scene: &Scene, ray: &RayFrame, point: u32) -> [f32; 4] {
+    let q = scene.points[point as usize];
+    let p = ray.project(Vec3::new(q[0], q[1], q[2]));
+    [p.x, p.y, p.z, q[3]]
+}
+
+/// The current tetrahedron: its point indices, and per vertex its
+/// projection into the ray frame and its scalar, `[x, y, z, s]`.
+#[derive(Clone, Copy)]
+struct Cell {
+    verts: [u32; 4],
+    v: [[f32; 4]; 4],
+}
+
+impl Cell {
+    #[inline]
+    fn load(scene: &Scene, ray: &RayFrame, verts: [u32; 4]) -> Cell {
+        let mut cell = Cell {
+            verts,
+            v: [[0.0; 4]; 4],
+        };
+        for (v, &point) in cell.v.iter_mut().zip(&verts) {
+            *v = project(scene, ray, point);
+        }
+        cell
+    }
+
+    /// Moves into the neighbour `verts`, whose vertex `apex` is the only one
+    /// not shared with this cell: the shared vertices keep their projections
+    /// (a point always projects to the same bits), the apex is projected.
+    #[inline]
+    fn step(&mut self, scene: &Scene, ray: &RayFrame, verts: [u32; 4], apex: usize) {
+        let (old, old_verts) = (self.v, self.verts);
+        for (i, &point) in verts.iter().enumerate() {
+            // Branch-free: the index of the old vertex equal to `point`
+            // (0 for the apex, overwritten below).
+            let j = usize::from(point == old_verts[1])
+                | (usize::from(point == old_verts[2]) << 1)
+                | (usize::from(point == old_verts[3]) * 3);
+            self.v[i] = old[j];
+        }
+        self.v[apex] = project(scene, ray, verts[apex]);
+        self.verts = verts;
+    }
+
+    #[inline]
+    fn p(&self, i: usize) -> RayPoint {
+        let [x, y, z, _] = self.v[i];
+        RayPoint { x, y, z }
+    }
+
+    /// Distance to and scalar at the crossing of face `f`.
+    #[inline]
+    fn crossing(&self, f: usize) -> (f32, f32) {
+        let [a, b, c] = FACE_VERTICES[f];
+        let (t, w) = crossing_barycentric(self.p(a), self.p(b), self.p(c));
+        let s = |i: usize| f64::from(self.v[i][3]);
+        let value = w[0] * s(a) + w[1] * s(b) + w[2] * s(c);
+        (t, value as f32)
+    }
+
+    /// Leaves through the exit face of a cell entered through `f_in`:
+    /// `(face, distance, scalar)`, or `None` for a degenerate cell.
+    ///
+    /// The distance and weights are those of `crossing_barycentric` (the
+    /// edge functions normalised), reusing the two apex edge functions
+    /// computed for the signs.
+    #[inline]
+    fn exit(&self, f_in: usize) -> Option<(usize, f32, f32)> {
+        let table = &APEX_TABLES[f_in];
+        let apex = self.p(f_in);
+        let mut e = [0.0f64; 4];
+        let mut code = 0;
+        for (i, &k) in table.others.iter().enumerate() {
+            let pk = self.p(k);
+            e[k] = edge_function(apex, pk);
+            // Exact zeros (the ray through an edge or vertex) take the
+            // symbolic perturbation's side.
+            let positive = if e[k] != 0.0 {
+                e[k] > 0.0
+            } else {
+                edge_sign(apex, pk) > 0
+            };
+            code |= usize::from(positive) << i;
+        }
+        let (f, next, prev) = table.exits[code]?;
+        // Weights of (apex, next, prev): each the edge function of the
+        // opposite edge, with ef(prev, apex) = -ef(apex, prev) exactly.
+        let (pn, pp) = (self.p(next), self.p(prev));
+        let w = [edge_function(pn, pp), -e[prev], e[next]];
+        let z = [apex.z, pn.z, pp.z];
+        let s = [self.v[f_in][3], self.v[next][3], self.v[prev][3]];
+        let lo = z[0].min(z[1]).min(z[2]);
+        let hi = z[0].max(z[1]).max(z[2]);
+        let sum = w[0] + w[1] + w[2];
+        if sum == 0.0 {
+            // The ray in the face's plane: any point of the face is the
+            // crossing; take the nearest vertex, as crossing_distance does.
+            let i = if lo == z[0] {
+                0
+            } else if lo == z[1] {
+                1
+            } else {
+                2
+            };
+            return Some((f, lo, s[i]));
+        }
+        let inv = 1.0 / sum;
+        let t = (w[0] * f64::from(z[0]) + w[1] * f64::from(z[1]) + w[2] * f64::from(z[2])) * inv;
+        let value =
+            (w[0] * f64::from(s[0]) + w[1] * f64::from(s[1]) + w[2] * f64::from(s[2])) * inv;
+        Some((f, (t as f32).clamp(lo, hi), value as f32))
+    }
+}
+
+/// Casts one ray from distance `t_start` on (`-inf` when its origin may lie
+/// inside the mesh: the walk then starts at the line's first entry and
+/// integrates only from distance 0). `skip` is scratch space.
+pub(crate) fn trace<I: SegmentIntegrator + ?Sized>(
+    scene: &Scene,
+    ray: &RayFrame,
+    t_start: f32,
+    integrator: &I,
+    limits: WalkLimits,
+    skip: &mut Vec<u32>,
+    counters: &mut RayCounters,
+) -> RayLight {
+    let mut light = RayLight {
+        color: Vec3::ZERO,
+        transmittance: Vec3::ONE,
+    };
+    // Distance reached so far; never decreases.
+    let mut t_cursor = t_start;
+    // Boundary faces entered at distance `skip_t` with no segment of
+    // positive length since: a re-entry query must not return them again
+    // (a ray grazing a pinch point would otherwise loop).
+    skip.clear();
+    let mut skip_t = f32::NAN;
+    'entries: while let Some(hit) = scene.bvh.first_entry(ray, t_cursor, f32::INFINITY, skip) {
+        counters.entries += 1;
+        counters.hit = true;
+        if hit.t != skip_t {
+            skip.clear();
+            skip_t = hit.t;
+        }
+        skip.push(hit.face);
+        let Some(bf) = scene.topology.boundary_faces.get(hit.face as usize) else {
+            counters.walk_failure = true;
+            break;
+        };
+        let mut tet = bf.tet as usize;
+        let mut f_in = usize::from(bf.local_face);
+        let mut cell = Cell::load(scene, ray, scene.walk[tet].verts);
+        let mut t_in = hit.t.max(t_cursor);
+        let mut s_in = cell.crossing(f_in).1;
+        loop {
+            counters.steps += 1;
+            if counters.steps > limits.max_steps {
+                counters.step_bound_hit = true;
+                break 'entries;
+            }
+            let Some((f_out, t_exit, s_out)) = cell.exit(f_in) else {
+                // Only a degenerate (flat) tetrahedron has no exit face.
+                counters.walk_failure = true;
+                break 'entries;
+            };
+            let t_out = t_exit.max(t_in);
+            if t_out > t_in {
+                skip.clear();
+                skip_t = f32::NAN;
+                if t_out > 0.0 {
+                    // Clip at the ray origin; the scalar is linear along the
+                    // segment, so interpolating it there is exact.
+                    let s_front = if t_in < 0.0 {
+                        s_in + (s_out - s_in) * (-t_in / (t_out - t_in))
+                    } else {
+                        s_in
+                    };
+                    let length = t_out - t_in.max(0.0);
+                    let (emitted, transmittance) = integrator.segment(s_front, s_out, length);
+                    light.color += light.transmittance * emitted;
+                    light.transmittance *= transmittance;
+                    counters.segments += 1;
+                    // 1 - mean(T) >= threshold, without a division.
+                    if light.transmittance.element_sum() <= limits.stop_below_sum {
+                        break 'entries;
+                    }
+                }
+            }
+            t_in = t_out;
+            s_in = s_out;
+            let next = scene.walk[tet].next[f_out];
+            if next == NO_NEIGHBOR {
+                t_cursor = t_out;
+                continue 'entries;
+            }
+            tet = (next >> 2) as usize;
+            f_in = (next & 3) as usize;
+            cell.step(scene, ray, scene.walk[tet].verts, f_in);
+        }
+    }
+    light
+}
