@@ -1,7 +1,47 @@
-//! The volume rendering integral along one ray segment.
+//! The volume rendering integral along one ray segment (dissertation
+//! chapters 2, 3 and 5), by every method the project compares:
 //!
-//! API CONTRACT (skeleton): the ray casters use `ScalarIntegrator`:
-//! `ScalarIntegrator::new(method, &transfer_function, &options)` and
-//! `integrate(s_front, s_back, length) -> SegmentLight { emitted, transmittance }`
-//! (front = nearer the eye). It splits the segment at transfer-function
-//! control points and applies the chosen per-segment method.
+//! | method | module | model |
+//! | --- | --- | --- |
+//! | averaged luminance and attenuation (eq. 3.16) | [`average`] | linear attenuation |
+//! | averaged luminance and opacity | [`average`] | linear opacity |
+//! | exact, Williams-Max-Stein (eq. 3.28), f64 | [`exact`] | linear attenuation |
+//! | partial pre-integration (eq. 5.5, Psi table) | [`ppi`], [`psi`] | linear attenuation |
+//! | linear luminance, average opacity (5.3.1) | [`opacity`] | linear opacity |
+//! | linear luminance and opacity (5.3.2) | [`opacity`] | linear opacity |
+//! | full pre-integration (Roettger/Engel/Schulze) | [`preintegrated`] | linear attenuation |
+//! | Riemann sum (eq. 3.13) | [`ScalarIntegrator`] | the transfer function, sampled |
+//! | f64 adaptive quadrature (eq. 2.2) | [`reference`] | either |
+//!
+//! Conventions: a segment runs from its back (far from the eye) to its
+//! front; its light is what it emits towards the eye (premultiplied) and its
+//! transmittance, per RGB channel. Attenuation `tau` is per unit length.
+//!
+//! The renderers call [`ScalarIntegrator::integrate`] with the scalar at
+//! both ends of a cell segment; it cuts the segment at the transfer
+//! function's knots (section 4.3), so that luminance and attenuation are
+//! linear on every piece, and applies the chosen method to each piece.
+
+pub mod average;
+mod error;
+pub mod exact;
+mod knots;
+mod method;
+pub mod opacity;
+pub mod ppi;
+pub mod preintegrated;
+pub mod psi;
+pub mod reference;
+mod scalar;
+mod segment;
+pub mod special;
+mod tf;
+
+pub use error::IntegrateError;
+pub use knots::{Material, OpacityMode, Piece, TfKnots};
+pub use method::{Method, Model, UnknownMethod};
+pub use preintegrated::PreintegrationTable;
+pub use psi::{GammaSpacing, PsiTable};
+pub use scalar::{IntegratorOptions, ScalarIntegrator, RIEMANN_MAX_SAMPLES};
+pub use segment::{OpacityParams, SegmentLight, SegmentParams, Weights};
+pub use tf::{ColorPoint, OpacityPoint, TfError, TransferFunction};

@@ -324,3 +324,11 @@ pub(crate) fn trace<I: SegmentIntegrator + ?Sized>(
     }
     light
 }
+
+impl SegmentIntegrator for tetray_integrate::ScalarIntegrator {
+    #[inline]
+    fn segment(&self, s_front: f32, s_back: f32, length: f32) -> (Vec3, Vec3) {
+        let light = self.integrate(s_front, s_back, length);
+        (light.emitted, light.transmittance)
+    }
+}

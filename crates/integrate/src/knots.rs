@@ -1,0 +1,267 @@
+//! The transfer function as the integrators read it: one sorted list of
+//! knots holding luminance, attenuation and opacity, linear between knots,
+//! and the split of a segment at the knots it crosses (adaptive transfer
+//! function sampling, dissertation section 4.3): within a piece everything
+//! is linear, so the linear methods are exact on it.
+
+use glam::Vec3;
+
+use crate::opacity::ALPHA_MAX;
+use crate::tf::TransferFunction;
+
+/// How an opacity becomes an attenuation coefficient.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum OpacityMode {
+    /// `tau = -ln(1 - alpha) / u`: `alpha` is exactly the opacity of one
+    /// unit distance `u` of material (eq. 5.12).
+    #[default]
+    Exact,
+    /// `tau = alpha / u`, as VTK's unstructured-grid integrators do.
+    Vtk,
+}
+
+/// Material properties at one scalar.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Material {
+    /// Luminance (RGB).
+    pub lum: Vec3,
+    /// Attenuation per world unit.
+    pub tau: Vec3,
+    /// Opacity of one unit distance, at most [`ALPHA_MAX`].
+    pub alpha: Vec3,
+}
+
+impl Material {
+    fn lerp(&self, other: &Material, t: f32) -> Material {
+        Material {
+            lum: self.lum.lerp(other.lum, t),
+            tau: self.tau.lerp(other.tau, t),
+            alpha: self.alpha.lerp(other.alpha, t),
+        }
+    }
+}
+
+/// A piece of a segment within one knot interval: its material at the
+/// front and back ends and its length.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Piece {
+    pub front: Material,
+    pub back: Material,
+    pub length: f32,
+}
+
+/// Knots in nondecreasing scalar order (two at one scalar make a step).
+#[derive(Debug, Clone, PartialEq)]
+pub struct TfKnots {
+    scalars: Vec<f32>,
+    materials: Vec<Material>,
+}
+
+impl TfKnots {
+    /// Merges the colour and opacity points of `tf` into one knot list,
+    /// converting opacity to attenuation with unit distance `u`.
+    pub fn new(tf: &TransferFunction, unit_distance: f32, mode: OpacityMode) -> TfKnots {
+        let mut xs: Vec<f32> = tf
+            .color_points()
+            .iter()
+            .map(|p| p.scalar)
+            .chain(tf.opacity_points().iter().map(|p| p.scalar))
+            .collect();
+        xs.sort_by(f32::total_cmp);
+        xs.dedup();
+        let mut scalars = Vec::with_capacity(xs.len() + 2);
+        let mut materials = Vec::with_capacity(xs.len() + 2);
+        for &x in &xs {
+            let left = material(tf, x, Side::Left, unit_distance, mode);
+            let right = material(tf, x, Side::Right, unit_distance, mode);
+            scalars.push(x);
+            materials.push(left);
+            if right != left {
+                scalars.push(x);
+                materials.push(right);
+            }
+        }
+        TfKnots { scalars, materials }
+    }
+
+    /// Knots given directly (each scalar's material). Panics on an empty or
+    /// unsorted list: callers build them from validated data.
+    pub fn from_materials(knots: Vec<(f32, Material)>) -> TfKnots {
+        assert!(!knots.is_empty(), "at least one knot");
+        assert!(knots.windows(2).all(|w| w[0].0 <= w[1].0), "sorted knots");
+        let (scalars, materials) = knots.into_iter().unzip();
+        TfKnots { scalars, materials }
+    }
+
+    pub fn scalars(&self) -> &[f32] {
+        &self.scalars
+    }
+
+    pub fn materials(&self) -> &[Material] {
+        &self.materials
+    }
+
+    pub fn len(&self) -> usize {
+        self.scalars.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.scalars.is_empty()
+    }
+
+    /// Material at `s` (right-continuous at steps).
+    pub fn at(&self, s: f32) -> Material {
+        self.in_interval(self.interval_up(s), s)
+    }
+
+    /// The interval `k` with `x_k <= s < x_(k+1)`: `-1` below the first
+    /// knot, `n - 1` from the last one on.
+    #[inline]
+    fn interval_up(&self, s: f32) -> isize {
+        self.scalars.partition_point(|&x| x <= s) as isize - 1
+    }
+
+    /// The interval `k` with `x_k < s <= x_(k+1)`.
+    #[inline]
+    fn interval_down(&self, s: f32) -> isize {
+        self.scalars.partition_point(|&x| x < s) as isize - 1
+    }
+
+    /// Material at `s` by the linear function of interval `k`.
+    #[inline]
+    fn in_interval(&self, k: isize, s: f32) -> Material {
+        let last = self.scalars.len() as isize - 1;
+        if k < 0 {
+            return self.materials[0];
+        }
+        if k >= last {
+            return self.materials[last as usize];
+        }
+        let k = k as usize;
+        let (x0, x1) = (self.scalars[k], self.scalars[k + 1]);
+        let t = if x1 > x0 { (s - x0) / (x1 - x0) } else { 0.0 };
+        self.materials[k].lerp(&self.materials[k + 1], t.clamp(0.0, 1.0))
+    }
+
+    /// Calls `piece` for each piece of a segment with scalar `s_front` at
+    /// its front and `s_back` at its back, cut at every knot between them,
+    /// front to back. Returns the number of pieces.
+    #[inline]
+    pub fn split(
+        &self,
+        s_front: f32,
+        s_back: f32,
+        length: f32,
+        mut piece: impl FnMut(&Piece),
+    ) -> usize {
+        let last = self.scalars.len() as isize - 1;
+        let span = s_back - s_front;
+        if span == 0.0 || !span.is_finite() {
+            let m = self.at(s_front);
+            piece(&Piece {
+                front: m,
+                back: m,
+                length,
+            });
+            return 1;
+        }
+        let per_scalar = length / span.abs();
+        let increasing = span > 0.0;
+        let mut k = if increasing {
+            self.interval_up(s_front)
+        } else {
+            self.interval_down(s_front)
+        };
+        let mut s = s_front;
+        let mut count = 0;
+        loop {
+            // The end of interval k in the direction of travel.
+            let (bound, next) = if increasing {
+                if k < last {
+                    (self.scalars[(k + 1) as usize], k + 1)
+                } else {
+                    (f32::INFINITY, k)
+                }
+            } else if k >= 0 {
+                (self.scalars[k as usize], k - 1)
+            } else {
+                (f32::NEG_INFINITY, k)
+            };
+            let reached = if increasing { bound >= s_back } else { bound <= s_back };
+            let s_end = if reached { s_back } else { bound };
+            let piece_length = if reached && count == 0 {
+                length
+            } else {
+                (s_end - s).abs() * per_scalar
+            };
+            if piece_length > 0.0 || reached {
+                piece(&Piece {
+                    front: self.in_interval(k, s),
+                    back: self.in_interval(k, s_end),
+                    length: piece_length,
+                });
+                count += 1;
+            }
+            if reached {
+                return count;
+            }
+            s = s_end;
+            k = next;
+        }
+    }
+}
+
+#[derive(Clone, Copy, PartialEq)]
+enum Side {
+    Left,
+    Right,
+}
+
+/// The material at knot scalar `x`, approached from one side.
+fn material(tf: &TransferFunction, x: f32, side: Side, u: f32, mode: OpacityMode) -> Material {
+    let color = one_sided(tf.color_points().iter().map(|p| (p.scalar, p.rgb)), x, side);
+    let alpha_value = one_sided(
+        tf.opacity_points().iter().map(|p| (p.scalar, Vec3::splat(p.alpha))),
+        x,
+        side,
+    );
+    let alpha = alpha_value.clamp(Vec3::ZERO, Vec3::splat(ALPHA_MAX));
+    let tau = match mode {
+        OpacityMode::Exact => {
+            Vec3::from_array(alpha.to_array().map(|a| -(-a).ln_1p())) / u
+        }
+        OpacityMode::Vtk => alpha / u,
+    };
+    Material {
+        lum: color,
+        tau,
+        alpha,
+    }
+}
+
+/// A piecewise-linear function of points `(scalar, value)` at `x`, taking
+/// the left or the right limit at a step.
+fn one_sided(points: impl Iterator<Item = (f32, Vec3)> + Clone, x: f32, side: Side) -> Vec3 {
+    let pts: Vec<(f32, Vec3)> = points.collect();
+    let n = pts.len();
+    // Points strictly left of x and at or left of x.
+    let below = pts.partition_point(|p| p.0 < x);
+    let upto = pts.partition_point(|p| p.0 <= x);
+    if upto > below {
+        // x is a control point: the first (left) or last (right) at x.
+        return if side == Side::Left {
+            pts[below].1
+        } else {
+            pts[upto - 1].1
+        };
+    }
+    if below == 0 {
+        return pts[0].1;
+    }
+    if below == n {
+        return pts[n - 1].1;
+    }
+    let (x0, v0) = pts[below - 1];
+    let (x1, v1) = pts[below];
+    v0.lerp(v1, (x - x0) / (x1 - x0))
+}

@@ -1,0 +1,259 @@
+//! Psi, the partial pre-integration term (dissertation eq. 5.4, 5.8, 5.10):
+//! for a segment with linear attenuation, `a = tau_b D` at the back and
+//! `b = tau_f D` at the front,
+//!
+//! `Psi(a, b) = int_0^1 exp(-(b x + (a - b) x^2 / 2)) dx`
+//!
+//! (`x` is the fraction of the segment between a point and the front end:
+//! Psi is the mean transmittance from the segment to the eye). This module
+//! computes Psi in f64 by quadrature and stores it in the table that the
+//! ray casters look up with `gamma = tau D / (1 + tau D)` (section 5.2.3).
+
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex, OnceLock};
+
+use rayon::prelude::*;
+
+use crate::special::gauss_legendre_panel;
+use crate::IntegrateError;
+
+/// Exponent drop (in e-folds) covered by one 16-point Gauss-Legendre panel:
+/// `exp(-4 t)` on `[0, 1]` is integrated to 1e-16 by that rule.
+const EFOLDS_PER_PANEL: f64 = 4.0;
+/// Beyond this many e-folds the rest of the integrand is below 1e-26.
+const EFOLDS_CUTOFF: f64 = 60.0;
+
+/// Psi in f64 for `a = tau_b D >= 0` and `b = tau_f D >= 0` (either may be
+/// infinite), to about 1e-15 absolute.
+///
+/// The exponent `E(x) = -(b x + c x^2)`, `c = (a - b) / 2`, decreases
+/// monotonically on `[0, 1]` (`E'(x) = -(b (1 - x) + a x)`), so the interval
+/// is cut where `E` crosses each multiple of [`EFOLDS_PER_PANEL`] and each
+/// piece gets a Gauss-Legendre panel: accurate however steep the integrand.
+pub fn psi(a: f64, b: f64) -> f64 {
+    if a.is_nan() || b.is_nan() || a < 0.0 || b < 0.0 {
+        return f64::NAN;
+    }
+    if a.is_infinite() || b.is_infinite() {
+        return 0.0;
+    }
+    let c = 0.5 * (a - b);
+    let total = 0.5 * (a + b);
+    let integrand = |x: f64| (-(b * x + c * x * x)).exp();
+    let mut sum = 0.0;
+    let mut x0 = 0.0;
+    let mut level = EFOLDS_PER_PANEL;
+    loop {
+        if level >= total {
+            sum += gauss_legendre_panel(x0, 1.0, integrand);
+            break;
+        }
+        if level > EFOLDS_CUTOFF {
+            break;
+        }
+        // b x + c x^2 = level, in the form without cancellation.
+        let x1 = (2.0 * level / (b + (b * b + 4.0 * c * level).max(0.0).sqrt())).min(1.0);
+        sum += gauss_legendre_panel(x0, x1, integrand);
+        x0 = x1;
+        level += EFOLDS_PER_PANEL;
+    }
+    sum
+}
+
+/// How the table's nodes are placed along each gamma axis.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum GammaSpacing {
+    /// Nodes uniform in gamma, `gamma_i = i / (N - 1)`: the dissertation's
+    /// table. Near `gamma_b = 1` Psi behaves like `sqrt(1 - gamma_b)`, whose
+    /// unbounded curvature limits bilinear lookup to about 1e-2 there.
+    Uniform,
+    /// Nodes uniform in `u = 1 - sqrt(1 - gamma) = 1 - 1/sqrt(1 + tau D)`,
+    /// i.e. `gamma_i = 1 - (1 - i / (N - 1))^2`: Psi is smooth in `u` up to
+    /// both opaque edges, so bilinear lookup is accurate everywhere.
+    #[default]
+    Quadratic,
+}
+
+impl GammaSpacing {
+    /// The table coordinate in `[0, 1]` of `tau D >= 0` (infinity maps to 1).
+    #[inline]
+    pub fn coord_of_tau_d(self, tau_d: f32) -> f32 {
+        match self {
+            GammaSpacing::Uniform => 1.0 - 1.0 / (1.0 + tau_d),
+            GammaSpacing::Quadratic => 1.0 - (1.0 + tau_d).sqrt().recip(),
+        }
+    }
+
+    /// The table coordinate in `[0, 1]` of `gamma` in `[0, 1]`.
+    #[inline]
+    pub fn coord_of_gamma(self, gamma: f32) -> f32 {
+        match self {
+            GammaSpacing::Uniform => gamma,
+            GammaSpacing::Quadratic => 1.0 - (1.0 - gamma).max(0.0).sqrt(),
+        }
+    }
+
+    /// `tau D` at table coordinate `u` in `[0, 1]` (f64, for building).
+    pub fn tau_d_of_coord(self, u: f64) -> f64 {
+        match self {
+            GammaSpacing::Uniform => u / (1.0 - u),
+            // 1 + tau D = 1 / (1 - u)^2.
+            GammaSpacing::Quadratic => {
+                let w = 1.0 - u;
+                (1.0 - w * w) / (w * w)
+            }
+        }
+    }
+
+    /// Gamma at table coordinate `u`.
+    pub fn gamma_of_coord(self, u: f64) -> f64 {
+        match self {
+            GammaSpacing::Uniform => u,
+            GammaSpacing::Quadratic => 1.0 - (1.0 - u) * (1.0 - u),
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            GammaSpacing::Uniform => "uniform",
+            GammaSpacing::Quadratic => "quadratic",
+        }
+    }
+}
+
+/// Smallest and largest accepted table sizes (nodes per axis).
+pub const PSI_TABLE_MIN: usize = 2;
+pub const PSI_TABLE_MAX: usize = 8192;
+/// The default table size, as in the dissertation (section 5.2.4).
+pub const PSI_TABLE_DEFAULT: usize = 1024;
+
+/// Psi sampled on an `N x N` grid of (gamma_b, gamma_f), f32, looked up
+/// bilinearly. Row-major with gamma_f selecting the row:
+/// `values[i_f * N + i_b]` (back along x, front along y, as the texture).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PsiTable {
+    size: usize,
+    spacing: GammaSpacing,
+    values: Vec<f32>,
+}
+
+impl PsiTable {
+    /// Computes the table in f64 (in parallel) and rounds it to f32.
+    pub fn build(size: usize, spacing: GammaSpacing) -> Result<PsiTable, IntegrateError> {
+        if !(PSI_TABLE_MIN..=PSI_TABLE_MAX).contains(&size) {
+            return Err(IntegrateError::PsiTableSize {
+                size,
+                min: PSI_TABLE_MIN,
+                max: PSI_TABLE_MAX,
+            });
+        }
+        let last = (size - 1) as f64;
+        let tau_d: Vec<f64> = (0..size)
+            .map(|i| {
+                if i == size - 1 {
+                    f64::INFINITY
+                } else {
+                    spacing.tau_d_of_coord(i as f64 / last)
+                }
+            })
+            .collect();
+        let mut values = vec![0.0f32; size * size];
+        values
+            .par_chunks_mut(size)
+            .zip(&tau_d)
+            .for_each(|(row, &front)| {
+                for (value, &back) in row.iter_mut().zip(&tau_d) {
+                    *value = psi(back, front) as f32;
+                }
+            });
+        Ok(PsiTable {
+            size,
+            spacing,
+            values,
+        })
+    }
+
+    /// The process-wide table of `size` nodes per axis with the default
+    /// spacing, built on first use and shared afterwards.
+    pub fn shared(size: usize) -> Result<Arc<PsiTable>, IntegrateError> {
+        static CACHE: OnceLock<Mutex<HashMap<usize, Arc<PsiTable>>>> = OnceLock::new();
+        let cache = CACHE.get_or_init(Default::default);
+        // Held while building: a second caller waits instead of rebuilding.
+        let mut tables = cache.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+        if let Some(table) = tables.get(&size) {
+            return Ok(Arc::clone(table));
+        }
+        let table = Arc::new(PsiTable::build(size, GammaSpacing::default())?);
+        tables.insert(size, Arc::clone(&table));
+        Ok(table)
+    }
+
+    /// Nodes per axis.
+    pub fn size(&self) -> usize {
+        self.size
+    }
+
+    pub fn spacing(&self) -> GammaSpacing {
+        self.spacing
+    }
+
+    /// The samples, `values[i_f * size + i_b]`.
+    pub fn values(&self) -> &[f32] {
+        &self.values
+    }
+
+    /// Gamma of node `i` on either axis.
+    pub fn node_gamma(&self, i: usize) -> f64 {
+        self.spacing
+            .gamma_of_coord(i as f64 / (self.size - 1) as f64)
+    }
+
+    /// Bilinear lookup by `(tau_b D, tau_f D)`, both `>= 0`.
+    #[inline]
+    pub fn lookup(&self, tau_d_back: f32, tau_d_front: f32) -> f32 {
+        self.bilinear(
+            self.spacing.coord_of_tau_d(tau_d_back),
+            self.spacing.coord_of_tau_d(tau_d_front),
+        )
+    }
+
+    /// Bilinear lookup by `(gamma_b, gamma_f)` in `[0, 1]`.
+    pub fn lookup_gamma(&self, gamma_back: f32, gamma_front: f32) -> f32 {
+        self.bilinear(
+            self.spacing.coord_of_gamma(gamma_back),
+            self.spacing.coord_of_gamma(gamma_front),
+        )
+    }
+
+    /// Nearest-node lookup by `(gamma_b, gamma_f)` (for studying the table
+    /// error, dissertation fig. 5.4).
+    pub fn lookup_gamma_nearest(&self, gamma_back: f32, gamma_front: f32) -> f32 {
+        let last = (self.size - 1) as f32;
+        let index = |g: f32| {
+            let u = self.spacing.coord_of_gamma(g.clamp(0.0, 1.0));
+            ((u * last).round() as usize).min(self.size - 1)
+        };
+        self.values[index(gamma_front) * self.size + index(gamma_back)]
+    }
+
+    /// Bilinear interpolation at table coordinates `(u_b, u_f)` in `[0, 1]`.
+    #[inline]
+    fn bilinear(&self, u_back: f32, u_front: f32) -> f32 {
+        let n = self.size;
+        let last = (n - 1) as f32;
+        let split = |u: f32| {
+            let x = u.clamp(0.0, 1.0) * last;
+            // NaN clamps to NaN; `as usize` maps it to 0 and the result stays NaN.
+            let i = (x as usize).min(n - 2);
+            (i, x - i as f32)
+        };
+        let (ib, fb) = split(u_back);
+        let (jf, ff) = split(u_front);
+        let row0 = jf * n + ib;
+        let row1 = row0 + n;
+        let v = &self.values;
+        let bottom = v[row0] + (v[row0 + 1] - v[row0]) * fb;
+        let top = v[row1] + (v[row1 + 1] - v[row1]) * fb;
+        bottom + (top - bottom) * ff
+    }
+}
