@@ -37,6 +37,11 @@ pub fn psi(a: f64, b: f64) -> f64 {
     if a.is_infinite() || b.is_infinite() {
         return 0.0;
     }
+    if a == 0.0 && b == 0.0 {
+        // A transparent segment: exactly 1 (the rule's weights sum to 2 only
+        // to rounding).
+        return 1.0;
+    }
     let c = 0.5 * (a - b);
     let total = 0.5 * (a + b);
     let integrand = |x: f64| (-(b * x + c * x * x)).exp();
@@ -69,7 +74,12 @@ pub enum GammaSpacing {
     Uniform,
     /// Nodes uniform in `u = 1 - sqrt(1 - gamma) = 1 - 1/sqrt(1 + tau D)`,
     /// i.e. `gamma_i = 1 - (1 - i / (N - 1))^2`: Psi is smooth in `u` up to
-    /// both opaque edges, so bilinear lookup is accurate everywhere.
+    /// both opaque edges (bilinear error 1.0e-6 at 1024^2 over a dense grid).
+    /// Only where both ends are extremely opaque does Psi vary faster than
+    /// any separable grid resolves: with `w = 1 - u`, it changes over
+    /// `w_b ~ w_f^2`, below one cell once `tau_f D > (N - 1)` and
+    /// `tau_b D > (N - 1)^2`; there the error is at most about 2e-4, on
+    /// a Psi below 1e-3.
     #[default]
     Quadratic,
 }
