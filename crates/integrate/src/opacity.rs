@@ -56,7 +56,8 @@ pub fn lin_opacity_weights(alpha_back: f32, alpha_front: f32, length_units: f32)
     let (ab, af) = (clamp_alpha(alpha_back), clamp_alpha(alpha_front));
     let diff = ab - af;
     let alpha_zeta = clamp_alpha(0.5 * (ab + af) + ZETA_PARABOLA * diff * diff);
-    let zeta = (-length_units * (-alpha_zeta).ln_1p()).exp();
+    // (1 - alpha)^units: ln_1p(-alpha) is negative.
+    let zeta = (length_units * (-alpha_zeta).ln_1p()).exp();
     let alpha_psi = clamp_alpha(PSI_BACK_WEIGHT * ab + PSI_FRONT_WEIGHT * af);
     let tau_d_psi = -length_units * (-alpha_psi).ln_1p();
     Weights {

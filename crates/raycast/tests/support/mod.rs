@@ -4,6 +4,9 @@
 
 #![allow(dead_code)]
 
+pub mod compare;
+pub mod optics;
+
 use glam::{DVec3, Vec3};
 use tetray_boundary_bvh::watertight::RayFrame;
 use tetray_boundary_bvh::BuildPreset;
