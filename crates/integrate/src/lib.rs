@@ -23,11 +23,13 @@
 //! linear on every piece, and applies the chosen method to each piece.
 
 pub mod average;
+pub mod colorspace;
 mod error;
 pub mod exact;
 mod knots;
 mod method;
 pub mod opacity;
+mod paraview;
 pub mod ppi;
 pub mod preintegrated;
 pub mod psi;
