@@ -183,7 +183,8 @@ impl ScalarIntegrator {
     /// `s_front` (the end nearer the eye) to `s_back`.
     #[inline]
     pub fn integrate(&self, s_front: f32, s_back: f32, length: f32) -> SegmentLight {
-        if !(length > 0.0) {
+        // Zero, negative and NaN lengths carry no material.
+        if length.is_nan() || length <= 0.0 {
             return SegmentLight::CLEAR;
         }
         match self.method {

@@ -105,7 +105,7 @@ fn dawson_nonnegative(x: f64) -> f64 {
 /// Nodes and weights of the 16-point Gauss-Legendre rule on `[-1, 1]`.
 pub fn gauss_legendre_16() -> &'static ([f64; 16], [f64; 16]) {
     static RULE: OnceLock<([f64; 16], [f64; 16])> = OnceLock::new();
-    RULE.get_or_init(|| gauss_legendre::<16>())
+    RULE.get_or_init(gauss_legendre::<16>)
 }
 
 /// The `N`-point Gauss-Legendre rule by Newton iteration on `P_N`.
