@@ -117,8 +117,7 @@ impl TransferFunction {
 
     /// Luminance at `s` (right-continuous at steps).
     pub fn color_at(&self, s: f32) -> Vec3 {
-        let xs: Vec<f32> = self.color.iter().map(|p| p.scalar).collect();
-        let (i, t) = locate(&xs, s);
+        let (i, t) = locate(self.color.len(), |k| self.color[k].scalar, s);
         match t {
             None => self.color[i].rgb,
             Some(t) => self.color[i].rgb.lerp(self.color[i + 1].rgb, t),
@@ -127,8 +126,7 @@ impl TransferFunction {
 
     /// Opacity at `s` (right-continuous at steps).
     pub fn opacity_at(&self, s: f32) -> f32 {
-        let xs: Vec<f32> = self.opacity.iter().map(|p| p.scalar).collect();
-        let (i, t) = locate(&xs, s);
+        let (i, t) = locate(self.opacity.len(), |k| self.opacity[k].scalar, s);
         match t {
             None => self.opacity[i].alpha,
             Some(t) => self.opacity[i].alpha + (self.opacity[i + 1].alpha - self.opacity[i].alpha) * t,
@@ -243,17 +241,26 @@ fn check_order(what: &'static str, xs: &[f32]) -> Result<(), TfError> {
     Ok(())
 }
 
-/// The interval of `xs` holding `s` (right-continuous): `(i, None)` when the
-/// value is point `i`'s (outside the range), `(i, Some(t))` to interpolate
-/// between points `i` and `i + 1`.
-fn locate(xs: &[f32], s: f32) -> (usize, Option<f32>) {
-    let above = xs.partition_point(|&x| x <= s);
-    if above == 0 {
+/// The interval of the `n` point scalars `x(k)` holding `s`
+/// (right-continuous): `(i, None)` when the value is point `i`'s (outside
+/// the range), `(i, Some(t))` to interpolate between points `i` and `i + 1`.
+fn locate(n: usize, x: impl Fn(usize) -> f32, s: f32) -> (usize, Option<f32>) {
+    // Binary search for the first point above s.
+    let (mut lo, mut hi) = (0, n);
+    while lo < hi {
+        let mid = (lo + hi) / 2;
+        if x(mid) <= s {
+            lo = mid + 1;
+        } else {
+            hi = mid;
+        }
+    }
+    if lo == 0 {
         return (0, None);
     }
-    if above == xs.len() {
-        return (xs.len() - 1, None);
+    if lo == n {
+        return (n - 1, None);
     }
-    let i = above - 1;
-    (i, Some((s - xs[i]) / (xs[i + 1] - xs[i])))
+    let i = lo - 1;
+    (i, Some((s - x(i)) / (x(i + 1) - x(i))))
 }

@@ -1,11 +1,12 @@
 //! Times CPU frames of the Blunt Fin (assets/bluntfin{xyz,q}.bin).
-//! Usage: bluntfin_frame [size] [frames] [threads]
+//! Usage: bluntfin_frame [size] [frames] [threads] [method|absorb]
 
 use std::path::Path;
 use std::time::Instant;
 
 use glam::Vec3;
 use tetray_boundary_bvh::BuildPreset;
+use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunction};
 use tetray_mesh::{load, LoadOptions};
 use tetray_raycast::{render_cpu, Camera, RenderOptions, Scene, SegmentIntegrator};
 
@@ -29,6 +30,7 @@ fn main() {
     let size: u32 = args.get(1).map_or(512, |s| s.parse().unwrap());
     let frames: usize = args.get(2).map_or(5, |s| s.parse().unwrap());
     let threads: usize = args.get(3).map_or(2, |s| s.parse().unwrap());
+    let method = args.get(4).cloned().unwrap_or_else(|| "absorb".to_string());
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets");
     let loaded = load(&root.join("bluntfinxyz.bin"), &LoadOptions::default()).unwrap();
     let t = Instant::now();
@@ -50,17 +52,28 @@ fn main() {
         threads: Some(threads),
         ..RenderOptions::default()
     };
+    let absorb = Absorb {
+        cheap: std::env::var_os("NOEXP").is_some(),
+    };
+    let (lo_s, hi_s) = scene
+        .scalar
+        .iter()
+        .fold((f32::INFINITY, f32::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+    let tf = TransferFunction::default_for_range(lo_s, hi_s);
+    let unit = (hi - lo).length() / (scene.tet_count() as f32).cbrt();
+    let options = IntegratorOptions {
+        unit_distance: unit,
+        ..IntegratorOptions::default()
+    };
+    let scalar = (method != "absorb")
+        .then(|| ScalarIntegrator::new(method.parse::<Method>().unwrap(), &tf, &options).unwrap());
+    let integrator: &dyn SegmentIntegrator = match &scalar {
+        Some(s) => s,
+        None => &absorb,
+    };
     let mut best = f64::INFINITY;
     for _ in 0..frames {
-        let out = render_cpu(
-            &scene,
-            &camera,
-            &Absorb {
-                cheap: std::env::var_os("NOEXP").is_some(),
-            },
-            &opts,
-        )
-        .unwrap();
+        let out = render_cpu(&scene, &camera, integrator, &opts).unwrap();
         let s = out.stats;
         best = best.min(s.elapsed.as_secs_f64());
         println!(
