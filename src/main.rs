@@ -1,1 +1,38 @@
-fn main() {}
+//! `tetray`: volume rendering of unstructured tetrahedral meshes.
+//!
+//! With no arguments it renders the embedded Blunt Fin dataset to
+//! `tetray.png`; `tetray --help` lists the commands. Every error is one
+//! line on stderr and exit code 1.
+
+mod cli;
+
+use std::process::ExitCode;
+
+use clap::Parser;
+
+fn main() -> ExitCode {
+    let args = match cli::Cli::try_parse() {
+        Ok(args) => args,
+        // --help and --version.
+        Err(e) if e.exit_code() == 0 => {
+            let _ = e.print();
+            return ExitCode::SUCCESS;
+        }
+        Err(e) => {
+            eprintln!("{} (see --help)", cli::one_line(&e));
+            return ExitCode::FAILURE;
+        }
+    };
+    match cli::run(args) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(err) => {
+            // The whole context chain on one line.
+            let message = format!("{err:#}");
+            eprintln!(
+                "error: {}",
+                message.split_whitespace().collect::<Vec<_>>().join(" ")
+            );
+            ExitCode::FAILURE
+        }
+    }
+}

@@ -1,0 +1,349 @@
+//! Options shared by the commands, and the parsers of their values. Every
+//! parser rejects what cannot be used (non-finite numbers, zero sizes,
+//! unknown names) so a bad value fails before any work starts.
+
+use std::path::PathBuf;
+
+use clap::{Args, ValueEnum};
+use glam::Vec3;
+use tetray_boundary_bvh::BuildPreset;
+use tetray_integrate::{Method, OpacityMode};
+
+/// Which mesh to load. No path means the embedded Blunt Fin dataset.
+#[derive(Debug, Clone, Default, Args)]
+pub struct MeshArgs {
+    /// Mesh file: .vtk, .vtu, or a PLOT3D grid (*xyz.bin, *.xyz, *.x).
+    /// Default: the embedded Blunt Fin (PLOT3D, NASA).
+    pub mesh: Option<PathBuf>,
+    /// PLOT3D solution (q) file. Default: the grid's name with "xyz"
+    /// replaced by "q" (postxyz.bin -> postq.bin), when it exists.
+    #[arg(long, value_name = "FILE")]
+    pub q: Option<PathBuf>,
+}
+
+/// VTK/ParaView camera. Whatever is not given comes from a
+/// `vtkRenderer::ResetCamera` fit of the mesh bounds, looking down -z.
+#[derive(Debug, Clone, Default, Args)]
+pub struct CameraArgs {
+    /// Camera position x,y,z (world units).
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub camera_position: Option<Vec3>,
+    /// Focal point x,y,z (world units).
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub focal_point: Option<Vec3>,
+    /// View-up vector x,y,z.
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub view_up: Option<Vec3>,
+    /// Full vertical view angle in degrees (perspective).
+    #[arg(long, value_name = "DEGREES", default_value_t = 30.0, value_parser = parse_view_angle, allow_hyphen_values = true)]
+    pub view_angle: f32,
+    /// Orthographic projection with this half view height (world units),
+    /// as VTK's ParallelScale. Without it the projection is perspective.
+    #[arg(long, value_name = "S", value_parser = parse_positive, allow_hyphen_values = true)]
+    pub parallel_scale: Option<f32>,
+    /// Rotate the camera about the view-up by this many degrees, after the
+    /// fit (vtkCamera::Azimuth).
+    #[arg(long, value_name = "DEGREES", default_value_t = 0.0, value_parser = parse_finite, allow_hyphen_values = true)]
+    pub azimuth: f32,
+    /// Then rotate it up by this many degrees (vtkCamera::Elevation,
+    /// followed by OrthogonalizeViewUp).
+    #[arg(long, value_name = "DEGREES", default_value_t = 0.0, value_parser = parse_finite, allow_hyphen_values = true)]
+    pub elevation: f32,
+}
+
+/// How a transfer-function opacity becomes an attenuation coefficient.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum OpacityModeArg {
+    /// tau = -ln(1 - alpha) / u: alpha is the opacity of one unit distance.
+    Exact,
+    /// tau = alpha / u, as VTK's unstructured-grid integrators do.
+    Vtk,
+}
+
+impl OpacityModeArg {
+    pub fn name(self) -> &'static str {
+        match self {
+            OpacityModeArg::Exact => "exact",
+            OpacityModeArg::Vtk => "vtk",
+        }
+    }
+}
+
+impl From<OpacityModeArg> for OpacityMode {
+    fn from(mode: OpacityModeArg) -> OpacityMode {
+        match mode {
+            OpacityModeArg::Exact => OpacityMode::Exact,
+            OpacityModeArg::Vtk => OpacityMode::Vtk,
+        }
+    }
+}
+
+/// The scalar, the transfer function and the ray-integration method.
+#[derive(Debug, Clone, Args)]
+pub struct IntegratorArgs {
+    /// Point scalar field to render. Default: the mesh's first field
+    /// (density for PLOT3D).
+    #[arg(long, value_name = "NAME")]
+    pub scalar: Option<String>,
+    /// Integration method: ppi (partial pre-integration, the default),
+    /// exact, average, average-opacity, lin-avg-opacity, lin-opacity,
+    /// preintegrated, riemann, reference, reference-opacity.
+    #[arg(long, value_name = "NAME", default_value = "ppi", value_parser = parse_method)]
+    pub integrator: Method,
+    /// ParaView colour-map preset JSON (RGBPoints, Points, ColorSpace).
+    /// Default: a cool-to-warm ramp with rising opacity over the data range.
+    #[arg(long, value_name = "FILE")]
+    pub tf: Option<PathBuf>,
+    /// Preset name when the JSON holds several (default: the first).
+    #[arg(long, value_name = "NAME", requires = "tf")]
+    pub tf_name: Option<String>,
+    /// Keep the preset's scalar values instead of rescaling them to the
+    /// data range (ParaView rescales by default).
+    #[arg(long, requires = "tf")]
+    pub no_rescale: bool,
+    /// Opacity unit distance u (world units). Default: ParaView's default
+    /// ScalarOpacityUnitDistance, the bounds diagonal divided by the cube
+    /// root of the number of cells of the dataset as read (hexahedra for
+    /// PLOT3D, the file's cells for VTK; before they are split into tets).
+    #[arg(long, value_name = "U", value_parser = parse_positive, allow_hyphen_values = true)]
+    pub unit_distance: Option<f32>,
+    /// How opacity becomes attenuation.
+    #[arg(long, value_enum, default_value_t = OpacityModeArg::Exact)]
+    pub opacity_mode: OpacityModeArg,
+    /// Psi table nodes per axis (ppi).
+    #[arg(long, value_name = "N", default_value_t = 1024)]
+    pub psi_size: usize,
+    /// Step of the Riemann sum (world units). Default: a quarter of the
+    /// mean tetrahedron chord length.
+    #[arg(long, value_name = "STEP", value_parser = parse_positive, allow_hyphen_values = true)]
+    pub riemann_step: Option<f32>,
+    /// Full pre-integration table nodes per axis (preintegrated).
+    #[arg(long, value_name = "N", default_value_t = 256)]
+    pub preintegration_size: usize,
+    /// Do not cut segments at the transfer function's control points
+    /// (section 4.3); only to study what the cut buys.
+    #[arg(long)]
+    pub no_knot_split: bool,
+}
+
+/// Which renderer draws the image.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum RendererArg {
+    /// The CPU reference ray caster (rayon, one ray per pixel).
+    Cpu,
+}
+
+impl RendererArg {
+    pub fn name(self) -> &'static str {
+        match self {
+            RendererArg::Cpu => "cpu",
+        }
+    }
+}
+
+/// The renderer and its walk limits.
+#[derive(Debug, Clone, Args)]
+pub struct WalkArgs {
+    #[arg(long, value_enum, default_value_t = RendererArg::Cpu)]
+    pub renderer: RendererArg,
+    /// Stop a ray once its opacity reaches A, in (0, 1]; 1 disables early
+    /// termination (the default: the reference renderer integrates
+    /// everything).
+    #[arg(long, value_name = "A", default_value_t = 1.0, value_parser = parse_early_termination, allow_hyphen_values = true)]
+    pub early_termination: f32,
+    /// Most tetrahedra one ray may visit; hitting the bound is counted and
+    /// reported. Default: the number of tetrahedra plus 1024.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+    pub max_steps: Option<u32>,
+    /// Worker threads (default: one per core).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..))]
+    pub threads: Option<u16>,
+    /// Boundary BVH build preset: fastest, very-fast, fast, medium, slow,
+    /// very-slow.
+    #[arg(long, value_name = "PRESET", default_value = "very-slow", value_parser = parse_bvh_preset)]
+    pub bvh_preset: BuildPreset,
+}
+
+/// Image size, file and background.
+#[derive(Debug, Clone, Args)]
+pub struct OutputArgs {
+    /// Image size in pixels.
+    #[arg(long, value_name = "WxH", value_parser = parse_size, default_value = "512x512")]
+    pub size: (u32, u32),
+    /// Output image: .png (composited over --background, 8-bit, no sRGB
+    /// transform) or .exr (linear float RGBA, premultiplied).
+    #[arg(short, long, value_name = "FILE", default_value = "tetray.png")]
+    pub output: PathBuf,
+    /// Background colour r,g,b (or one grey value) for PNG output.
+    #[arg(long, value_name = "R,G,B", value_parser = parse_rgb, default_value = "0,0,0", allow_hyphen_values = true)]
+    pub background: Vec3,
+}
+
+/// `tetray render`.
+#[derive(Debug, Clone, Args)]
+pub struct RenderArgs {
+    #[command(flatten)]
+    pub mesh: MeshArgs,
+    #[command(flatten)]
+    pub integrator: IntegratorArgs,
+    #[command(flatten)]
+    pub camera: CameraArgs,
+    #[command(flatten)]
+    pub output: OutputArgs,
+    #[command(flatten)]
+    pub walk: WalkArgs,
+}
+
+impl RenderArgs {
+    /// What `tetray` with no arguments does: `tetray render` with every
+    /// default (the embedded Blunt Fin to tetray.png).
+    pub fn defaults() -> Self {
+        use clap::Parser;
+        #[derive(Parser)]
+        struct Wrapper {
+            #[command(flatten)]
+            args: RenderArgs,
+        }
+        Wrapper::parse_from(["tetray"]).args
+    }
+}
+
+/// An integration method by name (see [`Method::names`]).
+pub fn parse_method(text: &str) -> Result<Method, String> {
+    text.parse()
+        .map_err(|e: tetray_integrate::UnknownMethod| e.to_string())
+}
+
+fn parse_bvh_preset(text: &str) -> Result<BuildPreset, String> {
+    text.parse()
+        .map_err(|e: tetray_boundary_bvh::BvhError| e.to_string())
+}
+
+/// `x,y,z`.
+pub fn parse_vec3(text: &str) -> Result<Vec3, String> {
+    match parse_floats(text)?.as_slice() {
+        [x, y, z] => Ok(Vec3::new(*x, *y, *z)),
+        _ => Err(format!("expected three numbers x,y,z, got {text:?}")),
+    }
+}
+
+/// `r,g,b` or one value for all three channels, each finite and >= 0.
+pub fn parse_rgb(text: &str) -> Result<Vec3, String> {
+    let rgb = match parse_floats(text)?.as_slice() {
+        [v] => Vec3::splat(*v),
+        [r, g, b] => Vec3::new(*r, *g, *b),
+        _ => return Err(format!("expected r,g,b or a single value, got {text:?}")),
+    };
+    if rgb.min_element() < 0.0 {
+        return Err(format!("{text:?} has a negative value"));
+    }
+    Ok(rgb)
+}
+
+/// `WxH`, each side in 1..=16384.
+pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
+    let (w, h) = text
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("expected WxH (e.g. 512x512), got {text:?}"))?;
+    let side = |s: &str| {
+        s.trim()
+            .parse::<u32>()
+            .ok()
+            .filter(|v| (1..=16384).contains(v))
+            .ok_or_else(|| format!("{text:?}: each side must be a whole number in 1..=16384"))
+    };
+    Ok((side(w)?, side(h)?))
+}
+
+/// A finite number.
+pub fn parse_finite(text: &str) -> Result<f32, String> {
+    match parse_floats(text)?.as_slice() {
+        [v] => Ok(*v),
+        _ => Err(format!("expected one number, got {text:?}")),
+    }
+}
+
+/// A finite number > 0.
+pub fn parse_positive(text: &str) -> Result<f32, String> {
+    let v = parse_finite(text)?;
+    if v > 0.0 {
+        Ok(v)
+    } else {
+        Err(format!("{v} must be greater than 0"))
+    }
+}
+
+/// A finite number >= 0.
+pub fn parse_non_negative(text: &str) -> Result<f32, String> {
+    let v = parse_finite(text)?;
+    if v >= 0.0 {
+        Ok(v)
+    } else {
+        Err(format!("{v} must not be negative"))
+    }
+}
+
+/// A number in [0, 1].
+pub fn parse_unit_interval(text: &str) -> Result<f32, String> {
+    let v = parse_finite(text)?;
+    if (0.0..=1.0).contains(&v) {
+        Ok(v)
+    } else {
+        Err(format!("{v} is outside [0, 1]"))
+    }
+}
+
+fn parse_view_angle(text: &str) -> Result<f32, String> {
+    let v = parse_finite(text)?;
+    if v > 0.0 && v < 180.0 {
+        Ok(v)
+    } else {
+        Err(format!("{v} degrees is outside (0, 180)"))
+    }
+}
+
+fn parse_early_termination(text: &str) -> Result<f32, String> {
+    let v = parse_finite(text)?;
+    if v > 0.0 && v <= 1.0 {
+        Ok(v)
+    } else {
+        Err(format!(
+            "{v} is outside (0, 1] (1 disables early termination)"
+        ))
+    }
+}
+
+fn parse_floats(text: &str) -> Result<Vec<f32>, String> {
+    text.split(',')
+        .map(|part| match part.trim().parse::<f32>() {
+            Ok(v) if v.is_finite() => Ok(v),
+            Ok(v) => Err(format!("{v} is not finite in {text:?}")),
+            Err(_) => Err(format!("{:?} is not a number in {text:?}", part.trim())),
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn values_parse_or_name_the_problem() {
+        assert_eq!(parse_size("64x32"), Ok((64, 32)));
+        assert!(parse_size("0x5").unwrap_err().contains("1..=16384"));
+        assert!(parse_size("64").unwrap_err().contains("WxH"));
+        assert_eq!(parse_rgb("0.5"), Ok(Vec3::splat(0.5)));
+        assert_eq!(parse_rgb("1,0,0.5"), Ok(Vec3::new(1.0, 0.0, 0.5)));
+        assert!(parse_rgb("1,2").is_err());
+        assert!(parse_rgb("-1").unwrap_err().contains("negative"));
+        assert_eq!(parse_vec3("-1,2,3"), Ok(Vec3::new(-1.0, 2.0, 3.0)));
+        assert!(parse_vec3("1,nan,3").unwrap_err().contains("not finite"));
+        assert!(parse_vec3("1,x,3").unwrap_err().contains("not a number"));
+        assert!(parse_positive("0").is_err());
+        assert!(parse_early_termination("1.5").is_err());
+        assert_eq!(parse_method("PPI"), Ok(Method::Ppi));
+        assert!(parse_method("simpson")
+            .unwrap_err()
+            .contains("expected one of"));
+    }
+}

@@ -1,0 +1,164 @@
+//! `tetray bench`: frame times over an orbit of the camera, as JSON.
+
+use std::time::Instant;
+
+use anyhow::Context;
+use clap::Args;
+use serde::Serialize;
+use tetray_raycast::render_cpu;
+
+use super::args::{parse_finite, parse_size, CameraArgs, IntegratorArgs, MeshArgs, WalkArgs};
+use super::{render, scene};
+
+/// `tetray bench`.
+#[derive(Debug, Clone, Args)]
+pub struct BenchArgs {
+    #[command(flatten)]
+    pub mesh: MeshArgs,
+    #[command(flatten)]
+    pub integrator: IntegratorArgs,
+    #[command(flatten)]
+    pub camera: CameraArgs,
+    #[command(flatten)]
+    pub walk: WalkArgs,
+    /// Image size in pixels.
+    #[arg(long, value_name = "WxH", value_parser = parse_size, default_value = "512x512")]
+    pub size: (u32, u32),
+    /// Frames to time, after one untimed warm-up frame.
+    #[arg(long, value_name = "N", default_value_t = 10, value_parser = clap::value_parser!(u32).range(1..))]
+    pub frames: u32,
+    /// Degrees of azimuth between frames, about the focal point. Default:
+    /// 360 / frames, one full orbit; 0 times a single view.
+    #[arg(long, value_name = "DEGREES", value_parser = parse_finite, allow_hyphen_values = true)]
+    pub orbit_step: Option<f32>,
+}
+
+#[derive(Debug, Serialize)]
+struct BenchJson {
+    renderer: &'static str,
+    adapter: String,
+    threads: usize,
+    mesh: String,
+    tets: usize,
+    boundary_faces: usize,
+    size: String,
+    width: u32,
+    height: u32,
+    integrator: &'static str,
+    unit_distance: f32,
+    early_termination: f32,
+    frames: u32,
+    orbit_step_degrees: f32,
+    ms_per_frame_median: f64,
+    ms_per_frame_min: f64,
+    ms_per_frame_max: f64,
+    /// Median absolute deviation of the frame times.
+    ms_per_frame_mad: f64,
+    rays_per_s: f64,
+    segments_per_s: f64,
+    segments_per_frame: f64,
+    /// Mesh tetrahedra times frames per second (the dissertation's tets/s).
+    tets_per_s: f64,
+    /// Tetrahedra the rays walked through, per second.
+    tet_steps_per_s: f64,
+    steps_bound_hits: u64,
+    walk_failures: u64,
+    load_s: f64,
+    scene_s: f64,
+    integrator_setup_s: f64,
+}
+
+pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
+    scene::configure_threads(args.walk.threads)?;
+    let frame = scene::FrameArgs {
+        mesh: &args.mesh,
+        integrator: &args.integrator,
+        camera: &args.camera,
+        walk: &args.walk,
+        size: args.size,
+    };
+    // Progress goes to stderr; stdout holds only the JSON.
+    let setup = scene::prepare(frame, &|line| eprintln!("{line}"))?;
+    let mut camera = setup.camera;
+    let options = render::render_options(&args.walk, args.size);
+    let orbit_step = args.orbit_step.unwrap_or(360.0 / args.frames as f32);
+
+    // Warm-up: page faults and caches stay out of the timings.
+    render_cpu(&setup.scene, &camera, &setup.integrator, &options).context("warm-up frame")?;
+    let mut times_ms = Vec::with_capacity(args.frames as usize);
+    let (mut rays, mut segments, mut steps) = (0u64, 0u64, 0u64);
+    let (mut bound_hits, mut failures) = (0u64, 0u64);
+    for frame in 0..args.frames {
+        let start = Instant::now();
+        let output = render_cpu(&setup.scene, &camera, &setup.integrator, &options)
+            .with_context(|| format!("frame {frame}"))?;
+        times_ms.push(start.elapsed().as_secs_f64() * 1e3);
+        let stats = output.stats;
+        rays += stats.rays;
+        segments += stats.segments;
+        steps += stats.steps;
+        bound_hits += stats.steps_bound_hits;
+        failures += stats.walk_failures;
+        camera.azimuth(orbit_step).context("orbiting the camera")?;
+        camera
+            .orthogonalize_view_up()
+            .context("orbiting the camera")?;
+    }
+    render::warn_about(&tetray_raycast::RenderStats {
+        steps_bound_hits: bound_hits,
+        walk_failures: failures,
+        ..Default::default()
+    });
+
+    let total_s = times_ms.iter().sum::<f64>() / 1e3;
+    let per_s = |count: f64| count / total_s.max(1e-12);
+    let median = median(&times_ms);
+    let deviations: Vec<f64> = times_ms.iter().map(|t| (t - median).abs()).collect();
+    let threads = rayon::current_num_threads();
+    let frames = f64::from(args.frames);
+    let tets = setup.scene.tet_count();
+    let json = BenchJson {
+        renderer: args.walk.renderer.name(),
+        adapter: format!("cpu (rayon), {threads} threads"),
+        threads,
+        mesh: setup.mesh_name.clone(),
+        tets,
+        boundary_faces: setup.scene.topology.boundary_faces.len(),
+        size: format!("{}x{}", args.size.0, args.size.1),
+        width: args.size.0,
+        height: args.size.1,
+        integrator: setup.method.name(),
+        unit_distance: setup.unit_distance,
+        early_termination: args.walk.early_termination,
+        frames: args.frames,
+        orbit_step_degrees: orbit_step,
+        ms_per_frame_median: median,
+        ms_per_frame_min: times_ms.iter().copied().fold(f64::INFINITY, f64::min),
+        ms_per_frame_max: times_ms.iter().copied().fold(0.0, f64::max),
+        ms_per_frame_mad: self::median(&deviations),
+        rays_per_s: per_s(rays as f64),
+        segments_per_s: per_s(segments as f64),
+        segments_per_frame: segments as f64 / frames,
+        tets_per_s: per_s(tets as f64 * frames),
+        tet_steps_per_s: per_s(steps as f64),
+        steps_bound_hits: bound_hits,
+        walk_failures: failures,
+        load_s: setup.load_time.as_secs_f64(),
+        scene_s: setup.scene_time.as_secs_f64(),
+        integrator_setup_s: setup.integrator_time.as_secs_f64(),
+    };
+    println!("{}", serde_json::to_string_pretty(&json)?);
+    Ok(())
+}
+
+/// The median of a non-empty list.
+fn median(values: &[f64]) -> f64 {
+    let mut sorted = values.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    let n = sorted.len();
+    if n % 2 == 1 {
+        sorted[n / 2]
+    } else {
+        0.5 * (sorted[n / 2 - 1] + sorted[n / 2])
+    }
+}

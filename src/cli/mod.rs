@@ -1,0 +1,62 @@
+//! The command line: argument definitions and dispatch.
+
+mod args;
+mod bench;
+mod info;
+mod psi;
+mod render;
+mod scene;
+mod segment;
+
+use clap::{Parser, Subcommand};
+
+use args::RenderArgs;
+
+/// Volume rendering of unstructured tetrahedral meshes by walking each ray
+/// cell to cell (Moreland 2004). With no command, renders the embedded
+/// Blunt Fin dataset to tetray.png.
+#[derive(Debug, Parser)]
+#[command(name = "tetray", version, about, long_about = None)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Option<Command>,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Render a mesh to an image (.png or .exr).
+    Render(Box<RenderArgs>),
+    /// Print counts, bounds, scalar ranges and validation findings of a mesh.
+    Info(info::InfoArgs),
+    /// Integrate one ray segment with any method and print JSON.
+    Segment(segment::SegmentArgs),
+    /// Print the Psi table's value and Psi in f64 at (gamma_b, gamma_f), as JSON.
+    Psi(psi::PsiArgs),
+    /// Render frames orbiting the camera and print timings as JSON.
+    Bench(Box<bench::BenchArgs>),
+}
+
+/// Runs the parsed command line.
+pub fn run(cli: Cli) -> anyhow::Result<()> {
+    match cli.command {
+        None => render::run(&RenderArgs::defaults()),
+        Some(Command::Render(args)) => render::run(&args),
+        Some(Command::Info(args)) => info::run(&args),
+        Some(Command::Segment(args)) => segment::run(&args),
+        Some(Command::Psi(args)) => psi::run(&args),
+        Some(Command::Bench(args)) => bench::run(&args),
+    }
+}
+
+/// A command-line error as one line: clap's message up to its usage notes,
+/// with the lines it lists (missing arguments) joined.
+pub fn one_line(error: &clap::Error) -> String {
+    let text = error.to_string();
+    let message = text.split("\n\n").next().unwrap_or(&text);
+    let line = message.split_whitespace().collect::<Vec<_>>().join(" ");
+    if line.starts_with("error:") {
+        line
+    } else {
+        format!("error: {line}")
+    }
+}

@@ -1,0 +1,69 @@
+//! `tetray psi`: the Psi table (dissertation section 5.2.3) at one
+//! (gamma_b, gamma_f), against Psi computed in f64.
+
+use clap::Args;
+use serde::Serialize;
+use tetray_integrate::{psi, PsiTable};
+
+use super::args::parse_unit_interval;
+
+/// `tetray psi`.
+#[derive(Debug, Clone, Args)]
+pub struct PsiArgs {
+    /// gamma_b = tau_b D / (1 + tau_b D), in [0, 1].
+    #[arg(long, value_name = "G", value_parser = parse_unit_interval, allow_hyphen_values = true)]
+    pub gamma_b: f32,
+    /// gamma_f = tau_f D / (1 + tau_f D), in [0, 1].
+    #[arg(long, value_name = "G", value_parser = parse_unit_interval, allow_hyphen_values = true)]
+    pub gamma_f: f32,
+    /// Table nodes per axis.
+    #[arg(long, value_name = "N", default_value_t = 1024)]
+    pub size: usize,
+}
+
+#[derive(Debug, Serialize)]
+struct PsiJson {
+    gamma_b: f32,
+    gamma_f: f32,
+    /// tau_b D = gamma_b / (1 - gamma_b); null (infinite) at gamma_b = 1.
+    tau_b_d: f64,
+    tau_f_d: f64,
+    size: usize,
+    spacing: &'static str,
+    table_bilinear: f32,
+    table_nearest: f32,
+    f64: f64,
+    error_bilinear: f64,
+    error_nearest: f64,
+}
+
+pub fn run(args: &PsiArgs) -> anyhow::Result<()> {
+    let table = PsiTable::shared(args.size)?;
+    let tau_d = |gamma: f32| {
+        let g = f64::from(gamma);
+        if g >= 1.0 {
+            f64::INFINITY
+        } else {
+            g / (1.0 - g)
+        }
+    };
+    let (a, b) = (tau_d(args.gamma_b), tau_d(args.gamma_f));
+    let exact = psi::psi(a, b);
+    let bilinear = table.lookup_gamma(args.gamma_b, args.gamma_f);
+    let nearest = table.lookup_gamma_nearest(args.gamma_b, args.gamma_f);
+    let json = PsiJson {
+        gamma_b: args.gamma_b,
+        gamma_f: args.gamma_f,
+        tau_b_d: a,
+        tau_f_d: b,
+        size: table.size(),
+        spacing: table.spacing().name(),
+        table_bilinear: bilinear,
+        table_nearest: nearest,
+        f64: exact,
+        error_bilinear: (f64::from(bilinear) - exact).abs(),
+        error_nearest: (f64::from(nearest) - exact).abs(),
+    };
+    println!("{}", serde_json::to_string_pretty(&json)?);
+    Ok(())
+}

@@ -1,0 +1,148 @@
+//! `tetray render`: one image of a mesh.
+
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+use anyhow::{bail, Context};
+use glam::Vec3;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use tetray_raycast::{render_cpu_with_progress, Image, RenderOptions, RenderStats};
+
+use super::args::{RenderArgs, WalkArgs};
+use super::scene;
+
+/// Renders slower than this get a progress bar (on a terminal).
+const PROGRESS_AFTER: Duration = Duration::from_millis(500);
+
+/// The image formats, by file extension.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum ImageFormat {
+    Png,
+    Exr,
+}
+
+pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
+    let output = &args.output.output;
+    let format = image_format(output)?;
+    scene::configure_threads(args.walk.threads)?;
+    let size = args.output.size;
+    let frame = scene::FrameArgs {
+        mesh: &args.mesh,
+        integrator: &args.integrator,
+        camera: &args.camera,
+        walk: &args.walk,
+        size,
+    };
+    let setup = scene::prepare(frame, &|line| println!("{line}"))?;
+
+    let options = render_options(&args.walk, size);
+    let bar = ProgressBar::with_draw_target(Some(u64::from(size.1)), ProgressDrawTarget::hidden());
+    bar.set_style(
+        ProgressStyle::with_template("rendering [{bar:40}] {pos}/{len} rows, {eta} left")
+            .unwrap_or_else(|_| ProgressStyle::default_bar())
+            .progress_chars("=> "),
+    );
+    let start = Instant::now();
+    let progress = |rows_done: usize, _rows: usize| {
+        if bar.is_hidden() && start.elapsed() > PROGRESS_AFTER {
+            bar.set_draw_target(ProgressDrawTarget::stderr());
+        }
+        bar.set_position(rows_done as u64);
+    };
+    let frame = render_cpu_with_progress(
+        &setup.scene,
+        &setup.camera,
+        &setup.integrator,
+        &options,
+        Some(&progress),
+    )
+    .context("rendering")?;
+    bar.finish_and_clear();
+
+    println!("{}", describe_stats(&frame.stats, size));
+    warn_about(&frame.stats);
+    write_image(&frame.image, output, format, args.output.background)?;
+    let shown = std::path::absolute(output).unwrap_or_else(|_| output.clone());
+    println!("wrote {}", shown.display());
+    Ok(())
+}
+
+/// The renderer's options from the walk flags.
+pub fn render_options(walk: &WalkArgs, (width, height): (u32, u32)) -> RenderOptions {
+    RenderOptions {
+        width,
+        height,
+        early_termination: walk.early_termination,
+        max_steps_per_ray: walk.max_steps,
+        // The global pool, sized once by --threads.
+        threads: None,
+    }
+}
+
+/// One line of frame statistics.
+pub fn describe_stats(stats: &RenderStats, (width, height): (u32, u32)) -> String {
+    let seconds = stats.elapsed.as_secs_f64();
+    format!(
+        "rendered {width}x{height} in {seconds:.3} s: {} rays, {} hit the mesh, {} segments, \
+         {} tetrahedra visited, {} boundary entries ({:.2} M segments/s)",
+        stats.rays,
+        stats.rays_hit,
+        stats.segments,
+        stats.steps,
+        stats.entries,
+        stats.segments_per_second() / 1e6
+    )
+}
+
+/// Warnings for rays the walk could not finish.
+pub fn warn_about(stats: &RenderStats) {
+    if stats.steps_bound_hits > 0 {
+        eprintln!(
+            "warning: {} ray{} hit the step bound and were cut short (raise --max-steps)",
+            stats.steps_bound_hits,
+            scene::plural(stats.steps_bound_hits as usize)
+        );
+    }
+    if stats.walk_failures > 0 {
+        eprintln!(
+            "warning: {} ray{} stopped in a tetrahedron with no exit face (a degenerate cell)",
+            stats.walk_failures,
+            scene::plural(stats.walk_failures as usize)
+        );
+    }
+}
+
+/// The output format from the file name, checked before rendering.
+fn image_format(path: &Path) -> anyhow::Result<ImageFormat> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    let format = match ext.as_deref() {
+        Some("png") => ImageFormat::Png,
+        Some("exr") => ImageFormat::Exr,
+        _ => bail!("-o {}: the output must end in .png or .exr", path.display()),
+    };
+    let parent = path.parent().filter(|p| !p.as_os_str().is_empty());
+    if let Some(dir) = parent.filter(|dir| !dir.is_dir()) {
+        bail!(
+            "-o {}: the folder {} does not exist",
+            path.display(),
+            dir.display()
+        );
+    }
+    Ok(format)
+}
+
+fn write_image(
+    image: &Image,
+    path: &Path,
+    format: ImageFormat,
+    background: Vec3,
+) -> anyhow::Result<()> {
+    match format {
+        ImageFormat::Exr => image.write_exr(path)?,
+        ImageFormat::Png => image.write_png(path, background)?,
+    }
+    Ok(())
+}

@@ -1,0 +1,382 @@
+//! From command-line options to what the renderers need: the loaded mesh,
+//! the scene (topology, boundary BVH, active scalar), the integrator and the
+//! camera. Shared by `render` and `bench`; `info` uses the loader only.
+
+use std::time::{Duration, Instant};
+
+use anyhow::{bail, Context};
+use glam::Vec3;
+use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunction};
+use tetray_mesh::{LoadedMesh, TetMesh};
+use tetray_raycast::{Camera, Scene};
+
+use super::args::{CameraArgs, IntegratorArgs, MeshArgs, WalkArgs};
+
+/// The embedded default dataset: NASA's Blunt Fin, PLOT3D big-endian.
+const BLUNT_FIN_XYZ: &[u8] = include_bytes!("../../assets/bluntfinxyz.bin");
+const BLUNT_FIN_Q: &[u8] = include_bytes!("../../assets/bluntfinq.bin");
+pub const EMBEDDED_NAME: &str = "embedded Blunt Fin";
+
+/// A mesh as loaded, with what it took.
+pub struct MeshInput {
+    /// The file name, or [`EMBEDDED_NAME`].
+    pub name: String,
+    pub loaded: LoadedMesh,
+    pub load_time: Duration,
+}
+
+impl MeshInput {
+    /// Cells of the dataset as read, before non-tetrahedral cells were
+    /// split: what ParaView counts (hexahedra for a PLOT3D grid).
+    pub fn input_cells(&self) -> usize {
+        let report = &self.loaded.report;
+        self.loaded.mesh.tets.len() - report.tets_from_split + report.cells_split
+    }
+
+    /// ParaView's default ScalarOpacityUnitDistance (vtkSMBoundsDomain,
+    /// mode APPROXIMATE_CELL_LENGTH): the bounds diagonal divided by the cube
+    /// root of the dataset's cell count, the diagonal itself for no cells.
+    pub fn paraview_unit_distance(&self) -> f32 {
+        let (lo, hi) = self.loaded.mesh.bounds();
+        let diagonal = (hi - lo).as_dvec3().length();
+        let cells = self.input_cells() as f64;
+        let u = if cells > 0.0 {
+            diagonal / cells.cbrt()
+        } else {
+            diagonal
+        };
+        // A flat or single-point mesh has no length scale; 1 is VTK's default.
+        if u > 0.0 && u.is_finite() {
+            u as f32
+        } else {
+            1.0
+        }
+    }
+
+    /// One line: what was loaded.
+    pub fn describe(&self) -> String {
+        let (mesh, report) = (&self.loaded.mesh, &self.loaded.report);
+        let split = if report.cells_split > 0 {
+            format!(
+                " ({} cells split into {})",
+                report.cells_split, report.tets_from_split
+            )
+        } else {
+            String::new()
+        };
+        format!(
+            "loaded {} ({}): {} points, {} tetrahedra{split}, {} boundary faces, {} component{} in {:.3} s",
+            self.name,
+            report.format,
+            mesh.points.len(),
+            mesh.tets.len(),
+            self.loaded.topology.boundary_faces.len(),
+            report.validation.components,
+            plural(report.validation.components),
+            self.load_time.as_secs_f64()
+        )
+    }
+}
+
+/// Loads the mesh the options name, or the embedded default.
+pub fn load_mesh(args: &MeshArgs) -> anyhow::Result<MeshInput> {
+    let start = Instant::now();
+    let (name, loaded) = match &args.mesh {
+        None => {
+            if args.q.is_some() {
+                bail!("--q needs a PLOT3D grid file (the embedded dataset has its own)");
+            }
+            let loaded =
+                tetray_mesh::load_plot3d_bytes(BLUNT_FIN_XYZ, Some(BLUNT_FIN_Q), EMBEDDED_NAME)?;
+            (EMBEDDED_NAME.to_string(), loaded)
+        }
+        Some(path) => {
+            if !path.is_file() {
+                bail!("{}: no such file", path.display());
+            }
+            if let Some(q) = args.q.as_deref().filter(|q| !q.is_file()) {
+                bail!("--q {}: no such file", q.display());
+            }
+            let options = tetray_mesh::LoadOptions {
+                plot3d_q: args.q.clone(),
+            };
+            let loaded = tetray_mesh::load(path, &options)?;
+            (path.display().to_string(), loaded)
+        }
+    };
+    Ok(MeshInput {
+        name,
+        loaded,
+        load_time: start.elapsed(),
+    })
+}
+
+/// Everything a frame needs, and how long each part took to make.
+pub struct Setup {
+    pub mesh_name: String,
+    pub scene: Scene,
+    pub camera: Camera,
+    pub integrator: ScalarIntegrator,
+    pub method: Method,
+    pub unit_distance: f32,
+    pub load_time: Duration,
+    pub scene_time: Duration,
+    pub integrator_time: Duration,
+}
+
+/// What [`prepare`] makes a frame of.
+pub struct FrameArgs<'a> {
+    pub mesh: &'a MeshArgs,
+    pub integrator: &'a IntegratorArgs,
+    pub camera: &'a CameraArgs,
+    pub walk: &'a WalkArgs,
+    pub size: (u32, u32),
+}
+
+/// Loads the mesh, builds the scene, the camera (before the integrator's
+/// tables, so a bad camera fails fast) and the integrator, reporting each
+/// step through `log` and warnings on stderr.
+pub fn prepare(frame: FrameArgs<'_>, log: &dyn Fn(String)) -> anyhow::Result<Setup> {
+    let FrameArgs {
+        mesh: mesh_args,
+        integrator: args,
+        camera: camera_args,
+        walk,
+        size,
+    } = frame;
+    // Read before the (possibly long) mesh load, so a bad path fails at once.
+    let tf_text = match &args.tf {
+        Some(path) => Some(
+            std::fs::read_to_string(path)
+                .with_context(|| format!("--tf {}: cannot read", path.display()))?,
+        ),
+        None => None,
+    };
+    let input = load_mesh(mesh_args)?;
+    log(input.describe());
+    for warning in &input.loaded.report.warnings {
+        eprintln!("warning: {warning}");
+    }
+    let field = pick_field(&input, args.scalar.as_deref())?;
+    let paraview_u = input.paraview_unit_distance();
+    let MeshInput {
+        name,
+        loaded,
+        load_time,
+    } = input;
+
+    let start = Instant::now();
+    let scene = Scene::new(loaded.mesh, loaded.topology, &field, walk.bvh_preset)
+        .with_context(|| format!("{name}: preparing the mesh for ray casting"))?;
+    let scene_time = start.elapsed();
+    let bvh = scene.bvh.stats();
+    log(format!(
+        "boundary BVH ({}): {} faces, {} nodes, depth {}, built in {:.3} s (scene ready in {:.3} s)",
+        bvh.preset,
+        bvh.faces,
+        bvh.nodes,
+        bvh.max_depth,
+        bvh.build_time.as_secs_f64(),
+        scene_time.as_secs_f64()
+    ));
+
+    let camera = build_camera(camera_args, scene.bounds(), size)?;
+    warn_if_inside(&camera, scene.bounds());
+
+    let (lo, hi) = value_range(&scene.scalar);
+    let tf = match (&args.tf, &tf_text) {
+        (Some(path), Some(text)) => {
+            let rescale = (!args.no_rescale).then_some((lo, hi));
+            TransferFunction::from_paraview_json(text, args.tf_name.as_deref(), rescale)
+                .with_context(|| format!("--tf {}", path.display()))?
+        }
+        _ => TransferFunction::default_for_range(lo, hi),
+    };
+    let unit_distance = args.unit_distance.unwrap_or(paraview_u);
+    let chord = mean_tet_chord(&scene.mesh);
+    let options = IntegratorOptions {
+        unit_distance,
+        opacity_mode: args.opacity_mode.into(),
+        psi_table_size: args.psi_size,
+        riemann_step: args.riemann_step.unwrap_or(chord / 4.0),
+        preintegration_table_size: args.preintegration_size,
+        // The table is exact at this length and corrected for others: the
+        // typical segment, a tetrahedron's mean chord.
+        preintegration_length: chord,
+        scalar_range: Some((lo, hi)),
+        split_at_knots: !args.no_knot_split,
+        ..IntegratorOptions::default()
+    };
+    let method = args.integrator;
+    let integrator = ScalarIntegrator::new(method, &tf, &options)
+        .with_context(|| format!("setting up the {method} integrator"))?;
+    let integrator_time = integrator.setup_time();
+    let source = if args.unit_distance.is_some() {
+        "given"
+    } else {
+        "ParaView's default"
+    };
+    log(format!(
+        "integrator {method}{}: {field} in [{lo}, {hi}], unit distance {unit_distance} ({source}), \
+         opacity mode {}, set up in {:.3} s",
+        table_note(&integrator, &options),
+        args.opacity_mode.name(),
+        integrator_time.as_secs_f64()
+    ));
+    Ok(Setup {
+        mesh_name: name,
+        scene,
+        camera,
+        integrator,
+        method,
+        unit_distance,
+        load_time,
+        scene_time,
+        integrator_time,
+    })
+}
+
+/// The field to render: the one named, or the first.
+fn pick_field(input: &MeshInput, scalar: Option<&str>) -> anyhow::Result<String> {
+    let fields = &input.loaded.mesh.fields;
+    let names = || {
+        fields
+            .iter()
+            .map(|f| format!("{:?}", f.name))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    match (scalar, fields.first()) {
+        (_, None) => bail!(
+            "{} has no point scalar field to render (for PLOT3D, give the solution file with --q)",
+            input.name
+        ),
+        (None, Some(first)) => Ok(first.name.clone()),
+        (Some(name), Some(_)) if fields.iter().any(|f| f.name == name) => Ok(name.to_string()),
+        (Some(name), Some(_)) => bail!(
+            "--scalar {name:?}: {} has no such field; it has {}",
+            input.name,
+            names()
+        ),
+    }
+}
+
+fn table_note(integrator: &ScalarIntegrator, options: &IntegratorOptions) -> String {
+    if let Some(psi) = integrator.psi_table() {
+        format!(" (Psi table {0}x{0})", psi.size())
+    } else if integrator.preintegration_table().is_some() {
+        format!(
+            " (table {0}x{0} at length {1})",
+            options.preintegration_table_size, options.preintegration_length
+        )
+    } else if integrator.method() == Method::Riemann {
+        format!(" (step {})", options.riemann_step)
+    } else {
+        String::new()
+    }
+}
+
+/// The camera: VTK's ResetCamera fit of `bounds` for a `width x height`
+/// image (looking down -z, or along the given position and focal point),
+/// the given values, then azimuth, elevation and OrthogonalizeViewUp.
+fn build_camera(
+    args: &CameraArgs,
+    (lo, hi): (Vec3, Vec3),
+    (width, height): (u32, u32),
+) -> anyhow::Result<Camera> {
+    let mut camera = Camera {
+        view_angle: args.view_angle,
+        parallel_scale: args.parallel_scale,
+        ..Camera::default()
+    };
+    if let Some(up) = args.view_up {
+        camera.view_up = up;
+    }
+    match (args.camera_position, args.focal_point) {
+        (Some(position), Some(focal_point)) => {
+            camera.position = position;
+            camera.focal_point = focal_point;
+        }
+        (position, focal_point) => {
+            camera
+                .reset(lo, hi, width as f32 / height as f32)
+                .context("bad camera: cannot fit the mesh bounds")?;
+            if let Some(s) = args.parallel_scale {
+                camera.parallel_scale = Some(s);
+            }
+            if let Some(p) = position {
+                camera.position = p;
+            }
+            if let Some(f) = focal_point {
+                camera.focal_point = f;
+            }
+        }
+    }
+    camera.basis().context("bad camera")?;
+    camera.azimuth(args.azimuth).context("bad camera")?;
+    camera.elevation(args.elevation).context("bad camera")?;
+    camera.orthogonalize_view_up().context("bad camera")?;
+    Ok(camera)
+}
+
+/// Warns when rays start inside the mesh bounds (the renderer integrates
+/// from the eye, which is rarely what was meant).
+fn warn_if_inside(camera: &Camera, (lo, hi): (Vec3, Vec3)) {
+    if camera.is_inside_bounds(lo, hi) {
+        let p = camera.position;
+        eprintln!(
+            "warning: the camera at {},{},{} is inside the mesh bounds; rendering from the eye",
+            p.x, p.y, p.z
+        );
+    }
+}
+
+/// Sets the size of rayon's global pool, before any parallel work.
+pub fn configure_threads(threads: Option<u16>) -> anyhow::Result<()> {
+    if let Some(threads) = threads {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(usize::from(threads))
+            .build_global()
+            .with_context(|| format!("--threads {threads}: cannot start the thread pool"))?;
+    }
+    Ok(())
+}
+
+/// Mean chord length of the tetrahedra: for random lines through a convex
+/// body it is 4 V / S (Cauchy), the typical length of a ray segment.
+pub fn mean_tet_chord(mesh: &TetMesh) -> f32 {
+    let mut sum = 0.0f64;
+    for tet in &mesh.tets {
+        let [a, b, c, d] = tet.map(|v| mesh.points[v as usize].as_dvec3());
+        let volume = (b - a).dot((c - a).cross(d - a)).abs() / 6.0;
+        let area =
+            |p: glam::DVec3, q: glam::DVec3, r: glam::DVec3| (q - p).cross(r - p).length() / 2.0;
+        let surface = area(a, b, c) + area(a, b, d) + area(a, c, d) + area(b, c, d);
+        if surface > 0.0 {
+            sum += 4.0 * volume / surface;
+        }
+    }
+    let chord = (sum / mesh.tets.len().max(1) as f64) as f32;
+    if chord > 0.0 && chord.is_finite() {
+        chord
+    } else {
+        1.0
+    }
+}
+
+/// Smallest and largest value (the values are finite: validated on load).
+pub fn value_range(values: &[f32]) -> (f32, f32) {
+    values
+        .iter()
+        .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &v| {
+            (lo.min(v), hi.max(v))
+        })
+}
+
+pub fn plural(n: usize) -> &'static str {
+    if n == 1 {
+        ""
+    } else {
+        "s"
+    }
+}
