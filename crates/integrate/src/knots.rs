@@ -50,6 +50,16 @@ pub struct Piece {
     pub length: f32,
 }
 
+/// A scalar classified against the knots: its interval (right-continuous,
+/// `-1` below the first knot) and its material, computed once per face a
+/// ray crosses and shared by the two segments that meet there.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct KnotSample {
+    pub scalar: f32,
+    pub interval: i32,
+    pub material: Material,
+}
+
 /// Knots in nondecreasing scalar order (two at one scalar make a step).
 #[derive(Debug, Clone, PartialEq)]
 pub struct TfKnots {
@@ -112,6 +122,59 @@ impl TfKnots {
     /// Material at `s` (right-continuous at steps).
     pub fn at(&self, s: f32) -> Material {
         self.in_interval(self.interval_up(s), s)
+    }
+
+    /// `s` classified against the knots.
+    #[inline]
+    pub fn sample(&self, s: f32) -> KnotSample {
+        let k = self.interval_up(s);
+        KnotSample {
+            scalar: s,
+            interval: k as i32,
+            material: self.in_interval(k, s),
+        }
+    }
+
+    /// [`TfKnots::sample`], trying `near`'s interval first: along a ray the
+    /// scalar mostly stays within one interval.
+    #[inline]
+    pub fn sample_near(&self, s: f32, near: &KnotSample) -> KnotSample {
+        let k = near.interval as isize;
+        let last = self.scalars.len() as isize - 1;
+        let above_start = k < 0 || self.scalars[k as usize] <= s;
+        let below_end = k >= last || s < self.scalars[(k + 1) as usize];
+        if above_start && below_end {
+            KnotSample {
+                scalar: s,
+                interval: near.interval,
+                material: self.in_interval(k, s),
+            }
+        } else {
+            self.sample(s)
+        }
+    }
+
+    /// Like [`TfKnots::split`] for classified end points: one piece with the
+    /// samples' own materials when both lie in one interval, otherwise the
+    /// full split.
+    #[inline]
+    pub fn split_samples(
+        &self,
+        front: &KnotSample,
+        back: &KnotSample,
+        length: f32,
+        mut piece: impl FnMut(&Piece),
+    ) -> usize {
+        if front.interval == back.interval {
+            piece(&Piece {
+                front: front.material,
+                back: back.material,
+                length,
+            });
+            1
+        } else {
+            self.split(front.scalar, back.scalar, length, piece)
+        }
     }
 
     /// The interval `k` with `x_k <= s < x_(k+1)`: `-1` below the first

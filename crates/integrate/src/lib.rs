@@ -40,7 +40,7 @@ pub mod special;
 mod tf;
 
 pub use error::IntegrateError;
-pub use knots::{Material, OpacityMode, Piece, TfKnots};
+pub use knots::{KnotSample, Material, OpacityMode, Piece, TfKnots};
 pub use method::{Method, Model, UnknownMethod};
 pub use preintegrated::PreintegrationTable;
 pub use psi::{GammaSpacing, PsiTable};

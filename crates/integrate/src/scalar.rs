@@ -9,7 +9,7 @@ use glam::Vec3;
 
 use crate::average::{average_opacity_weights, average_weights};
 use crate::exact::exact_weights;
-use crate::knots::{Material, OpacityMode, Piece, TfKnots};
+use crate::knots::{KnotSample, Material, OpacityMode, Piece, TfKnots};
 use crate::method::Method;
 use crate::opacity::{lin_avg_opacity_weights, lin_opacity_weights};
 use crate::ppi::ppi_weights;
@@ -183,25 +183,50 @@ impl ScalarIntegrator {
     /// `s_front` (the end nearer the eye) to `s_back`.
     #[inline]
     pub fn integrate(&self, s_front: f32, s_back: f32, length: f32) -> SegmentLight {
+        self.integrate_samples(&self.sample(s_front), &self.sample(s_back), length)
+    }
+
+    /// A scalar classified for [`ScalarIntegrator::integrate_samples`].
+    #[inline]
+    pub fn sample(&self, s: f32) -> KnotSample {
+        self.knots.sample(s)
+    }
+
+    /// [`ScalarIntegrator::sample`] of a scalar close to `near`'s.
+    #[inline]
+    pub fn sample_near(&self, s: f32, near: &KnotSample) -> KnotSample {
+        self.knots.sample_near(s, near)
+    }
+
+    /// [`ScalarIntegrator::integrate`] with both end scalars classified (a
+    /// ray walk classifies each face crossing once, for the two segments
+    /// meeting there).
+    #[inline]
+    pub fn integrate_samples(
+        &self,
+        front: &KnotSample,
+        back: &KnotSample,
+        length: f32,
+    ) -> SegmentLight {
         // Zero, negative and NaN lengths carry no material.
         if length.is_nan() || length <= 0.0 {
             return SegmentLight::CLEAR;
         }
         match self.method {
-            Method::Riemann => self.riemann(s_front, s_back, length),
+            Method::Riemann => self.riemann(front.scalar, back.scalar, length),
             Method::Preintegrated => match &self.preintegration {
-                Some(table) => table.lookup(s_front, s_back, length),
+                Some(table) => table.lookup(front.scalar, back.scalar, length),
                 None => unreachable!("built with the integrator"),
             },
             _ if self.split => {
                 let mut light = SegmentLight::CLEAR;
                 self.knots
-                    .split(s_front, s_back, length, |p| light = light.then(self.piece(p)));
+                    .split_samples(front, back, length, |p| light = light.then(self.piece(p)));
                 light
             }
             _ => self.piece(&Piece {
-                front: self.knots.at(s_front),
-                back: self.knots.at(s_back),
+                front: front.material,
+                back: back.material,
                 length,
             }),
         }

@@ -14,7 +14,13 @@ struct Absorb {
     cheap: bool,
 }
 impl SegmentIntegrator for Absorb {
-    fn segment(&self, s_front: f32, s_back: f32, length: f32) -> (Vec3, Vec3) {
+    type Sample = f32;
+
+    fn sample(&self, s: f32) -> f32 {
+        s
+    }
+
+    fn segment(&self, &s_front: &f32, &s_back: &f32, length: f32) -> (Vec3, Vec3) {
         let tau = 0.5 * (s_front + s_back) * 0.2;
         let t = if self.cheap {
             1.0 - tau * length * 1e-3
@@ -65,15 +71,25 @@ fn main() {
         unit_distance: unit,
         ..IntegratorOptions::default()
     };
-    let scalar = (method != "absorb")
-        .then(|| ScalarIntegrator::new(method.parse::<Method>().unwrap(), &tf, &options).unwrap());
-    let integrator: &dyn SegmentIntegrator = match &scalar {
-        Some(s) => s,
-        None => &absorb,
-    };
+    if method == "absorb" {
+        time_frames(&scene, &camera, &absorb, &opts, frames);
+    } else {
+        let method: Method = method.parse().unwrap();
+        let scalar = ScalarIntegrator::new(method, &tf, &options).unwrap();
+        time_frames(&scene, &camera, &scalar, &opts, frames);
+    }
+}
+
+fn time_frames<I: SegmentIntegrator>(
+    scene: &Scene,
+    camera: &Camera,
+    integrator: &I,
+    opts: &RenderOptions,
+    frames: usize,
+) {
     let mut best = f64::INFINITY;
     for _ in 0..frames {
-        let out = render_cpu(&scene, &camera, integrator, &opts).unwrap();
+        let out = render_cpu(scene, camera, integrator, opts).unwrap();
         let s = out.stats;
         best = best.min(s.elapsed.as_secs_f64());
         println!(

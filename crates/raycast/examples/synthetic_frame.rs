@@ -9,7 +9,13 @@ use tetray_raycast::{render_cpu, Camera, RenderOptions, Scene, SegmentIntegrator
 
 struct Absorb;
 impl SegmentIntegrator for Absorb {
-    fn segment(&self, s_front: f32, s_back: f32, length: f32) -> (Vec3, Vec3) {
+    type Sample = f32;
+
+    fn sample(&self, s: f32) -> f32 {
+        s
+    }
+
+    fn segment(&self, &s_front: &f32, &s_back: &f32, length: f32) -> (Vec3, Vec3) {
         let t = 1.0 - 0.5 * (s_front + s_back) * length * 1e-3;
         (Vec3::splat(1.0 - t), Vec3::splat(t))
     }

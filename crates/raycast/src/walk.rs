@@ -12,11 +12,29 @@ use tetray_mesh::{FACE_VERTICES, NO_NEIGHBOR};
 use crate::scene::Scene;
 
 /// The light of one ray segment, front (nearer the eye) to back.
+///
+/// The walk classifies the scalar at every face it crosses once
+/// ([`SegmentIntegrator::sample`]) and passes the classified values of both
+/// ends to [`SegmentIntegrator::segment`]: the back of one segment is the
+/// front of the next.
 pub trait SegmentIntegrator: Sync {
+    /// What the integrator keeps of a scalar value.
+    type Sample: Copy;
+
+    /// Classifies the scalar `s`.
+    fn sample(&self, s: f32) -> Self::Sample;
+
+    /// Classifies `s`, known to be close to the value of `near`.
+    #[inline]
+    fn sample_near(&self, s: f32, near: &Self::Sample) -> Self::Sample {
+        let _ = near;
+        self.sample(s)
+    }
+
     /// Emitted light reaching the segment's front end and the segment's
-    /// transmittance, for a scalar linear from `s_front` to `s_back` over
+    /// transmittance, for a scalar linear from `front` to `back` over
     /// `length` world units.
-    fn segment(&self, s_front: f32, s_back: f32, length: f32) -> (Vec3, Vec3);
+    fn segment(&self, front: &Self::Sample, back: &Self::Sample, length: f32) -> (Vec3, Vec3);
 }
 
 /// Limits of one walk.
@@ -276,6 +294,7 @@ pub(crate) fn trace<I: SegmentIntegrator + ?Sized>(
         let mut cell = Cell::load(scene, ray, scene.walk[tet].verts);
         let mut t_in = hit.t.max(t_cursor);
         let mut s_in = cell.crossing(f_in).1;
+        let mut sample_in = integrator.sample(s_in);
         loop {
             counters.steps += 1;
             if counters.steps > limits.max_steps {
@@ -288,19 +307,20 @@ pub(crate) fn trace<I: SegmentIntegrator + ?Sized>(
                 break 'entries;
             };
             let t_out = t_exit.max(t_in);
+            let sample_out = integrator.sample_near(s_out, &sample_in);
             if t_out > t_in {
                 skip.clear();
                 skip_t = f32::NAN;
                 if t_out > 0.0 {
                     // Clip at the ray origin; the scalar is linear along the
                     // segment, so interpolating it there is exact.
-                    let s_front = if t_in < 0.0 {
-                        s_in + (s_out - s_in) * (-t_in / (t_out - t_in))
+                    let front = if t_in < 0.0 {
+                        integrator.sample(s_in + (s_out - s_in) * (-t_in / (t_out - t_in)))
                     } else {
-                        s_in
+                        sample_in
                     };
                     let length = t_out - t_in.max(0.0);
-                    let (emitted, transmittance) = integrator.segment(s_front, s_out, length);
+                    let (emitted, transmittance) = integrator.segment(&front, &sample_out, length);
                     light.color += light.transmittance * emitted;
                     light.transmittance *= transmittance;
                     counters.segments += 1;
@@ -312,6 +332,7 @@ pub(crate) fn trace<I: SegmentIntegrator + ?Sized>(
             }
             t_in = t_out;
             s_in = s_out;
+            sample_in = sample_out;
             let next = scene.walk[tet].next[f_out];
             if next == NO_NEIGHBOR {
                 t_cursor = t_out;
@@ -326,9 +347,21 @@ pub(crate) fn trace<I: SegmentIntegrator + ?Sized>(
 }
 
 impl SegmentIntegrator for tetray_integrate::ScalarIntegrator {
+    type Sample = tetray_integrate::KnotSample;
+
     #[inline]
-    fn segment(&self, s_front: f32, s_back: f32, length: f32) -> (Vec3, Vec3) {
-        let light = self.integrate(s_front, s_back, length);
+    fn sample(&self, s: f32) -> Self::Sample {
+        tetray_integrate::ScalarIntegrator::sample(self, s)
+    }
+
+    #[inline]
+    fn sample_near(&self, s: f32, near: &Self::Sample) -> Self::Sample {
+        tetray_integrate::ScalarIntegrator::sample_near(self, s, near)
+    }
+
+    #[inline]
+    fn segment(&self, front: &Self::Sample, back: &Self::Sample, length: f32) -> (Vec3, Vec3) {
+        let light = self.integrate_samples(front, back, length);
         (light.emitted, light.transmittance)
     }
 }

@@ -58,7 +58,13 @@ pub fn linear_integral(ray: &RayFrame, offset: f64, gradient: DVec3, t0: f64, t1
 pub struct LengthAndScalar;
 
 impl SegmentIntegrator for LengthAndScalar {
-    fn segment(&self, s_front: f32, s_back: f32, length: f32) -> (Vec3, Vec3) {
+    type Sample = f32;
+
+    fn sample(&self, s: f32) -> f32 {
+        s
+    }
+
+    fn segment(&self, &s_front: &f32, &s_back: &f32, length: f32) -> (Vec3, Vec3) {
         let mean = 0.5 * (f64::from(s_front) + f64::from(s_back));
         (
             Vec3::new(length, (mean * f64::from(length)) as f32, 0.0),
@@ -75,7 +81,13 @@ pub struct BeerLambert {
 }
 
 impl SegmentIntegrator for BeerLambert {
-    fn segment(&self, _s_front: f32, _s_back: f32, length: f32) -> (Vec3, Vec3) {
+    type Sample = f32;
+
+    fn sample(&self, s: f32) -> f32 {
+        s
+    }
+
+    fn segment(&self, &_s_front: &f32, &_s_back: &f32, length: f32) -> (Vec3, Vec3) {
         let t = (-f64::from(self.tau) * f64::from(length)).exp() as f32;
         (self.l * (1.0 - t), Vec3::splat(t))
     }
