@@ -5,7 +5,7 @@ use std::time::Instant;
 use anyhow::Context;
 use clap::Args;
 use serde::Serialize;
-use tetray_raycast::render_cpu;
+use tetray_raycast::render_scalar;
 
 use super::args::{parse_finite, parse_size, CameraArgs, IntegratorArgs, MeshArgs, WalkArgs};
 use super::{render, scene};
@@ -84,13 +84,13 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     let orbit_step = args.orbit_step.unwrap_or(360.0 / args.frames as f32);
 
     // Warm-up: page faults and caches stay out of the timings.
-    render_cpu(&setup.scene, &camera, &setup.integrator, &options).context("warm-up frame")?;
+    render_scalar(&setup.scene, &camera, &setup.integrator, &options).context("warm-up frame")?;
     let mut times_ms = Vec::with_capacity(args.frames as usize);
     let (mut rays, mut segments, mut steps) = (0u64, 0u64, 0u64);
     let (mut bound_hits, mut failures) = (0u64, 0u64);
     for frame in 0..args.frames {
         let start = Instant::now();
-        let output = render_cpu(&setup.scene, &camera, &setup.integrator, &options)
+        let output = render_scalar(&setup.scene, &camera, &setup.integrator, &options)
             .with_context(|| format!("frame {frame}"))?;
         times_ms.push(start.elapsed().as_secs_f64() * 1e3);
         let stats = output.stats;

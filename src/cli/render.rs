@@ -6,7 +6,7 @@ use std::time::{Duration, Instant};
 use anyhow::{bail, Context};
 use glam::Vec3;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use tetray_raycast::{render_cpu_with_progress, Image, RenderOptions, RenderStats};
+use tetray_raycast::{render_scalar_with_progress, Image, RenderOptions, RenderStats};
 
 use super::args::{RenderArgs, WalkArgs};
 use super::scene;
@@ -49,7 +49,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         }
         bar.set_position(rows_done as u64);
     };
-    let frame = render_cpu_with_progress(
+    let frame = render_scalar_with_progress(
         &setup.scene,
         &setup.camera,
         &setup.integrator,

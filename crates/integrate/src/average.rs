@@ -7,9 +7,9 @@ use crate::segment::Weights;
 /// Eq. 3.16 for `a = tau_b D`, `b = tau_f D`: a homogeneous segment with the
 /// mean attenuation, `I = I_0 zeta + (L_b + L_f)/2 (1 - zeta)`, which is eq.
 /// 5.5 with `Psi = (1 + zeta) / 2`.
-#[inline]
+#[inline(always)]
 pub fn average_weights(tau_d_back: f32, tau_d_front: f32) -> Weights {
-    let zeta = (-0.5 * (tau_d_back + tau_d_front)).exp();
+    let zeta = crate::fastmath::exp_f32(-0.5 * (tau_d_back + tau_d_front));
     Weights {
         zeta,
         psi: 0.5 * (1.0 + zeta),

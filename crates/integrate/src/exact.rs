@@ -106,10 +106,10 @@ pub fn exact_weights(tau_d_back: f32, tau_d_front: f32) -> Weights {
 pub fn exact_segment(p: &SegmentParams) -> SegmentLight {
     let d = p.length;
     light_from_weights(
-        p.lum_back,
-        p.lum_front,
-        p.tau_back * d,
-        p.tau_front * d,
+        p.lum_back.into(),
+        p.lum_front.into(),
+        (p.tau_back * d).into(),
+        (p.tau_front * d).into(),
         exact_weights,
     )
 }
@@ -170,6 +170,6 @@ mod tests {
             tau_front: Vec3::splat(1e6),
             length: 1.0,
         });
-        assert!(light.emitted.is_finite() && light.transmittance == Vec3::ZERO);
+        assert!(light.emitted.is_finite() && light.transmittance == glam::Vec3A::ZERO);
     }
 }

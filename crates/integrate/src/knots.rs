@@ -4,9 +4,10 @@
 //! function sampling, dissertation section 4.3): within a piece everything
 //! is linear, so the linear methods are exact on it.
 
-use glam::Vec3;
+use glam::{Vec3, Vec3A};
 
 use crate::opacity::ALPHA_MAX;
+use crate::segment::is_grey;
 use crate::tf::TransferFunction;
 
 /// How an opacity becomes an attenuation coefficient.
@@ -24,21 +25,19 @@ pub enum OpacityMode {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Material {
     /// Luminance (RGB).
-    pub lum: Vec3,
+    pub lum: Vec3A,
     /// Attenuation per world unit.
-    pub tau: Vec3,
+    pub tau: Vec3A,
     /// Opacity of one unit distance, at most [`ALPHA_MAX`].
-    pub alpha: Vec3,
+    pub alpha: Vec3A,
 }
 
 impl Material {
-    fn lerp(&self, other: &Material, t: f32) -> Material {
-        Material {
-            lum: self.lum.lerp(other.lum, t),
-            tau: self.tau.lerp(other.tau, t),
-            alpha: self.alpha.lerp(other.alpha, t),
-        }
-    }
+    const ZERO: Material = Material {
+        lum: Vec3A::ZERO,
+        tau: Vec3A::ZERO,
+        alpha: Vec3A::ZERO,
+    };
 }
 
 /// A piece of a segment within one knot interval: its material at the
@@ -65,6 +64,22 @@ pub struct KnotSample {
 pub struct TfKnots {
     scalars: Vec<f32>,
     materials: Vec<Material>,
+    /// Interval `k` (from -1 below the first knot to `n - 1` above the
+    /// last) at index `k + 1`, in the form the inner loops evaluate.
+    intervals: Vec<Interval>,
+    /// Every knot's attenuation and opacity equal in all channels.
+    grey: bool,
+}
+
+/// One knot interval as a linear function of the scalar:
+/// `start + delta * clamp((s - x0) * inv_width, 0, 1)` (no division, no
+/// branch; the outer intervals have `delta = 0`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Interval {
+    x0: f32,
+    inv_width: f32,
+    start: Material,
+    delta: Material,
 }
 
 impl TfKnots {
@@ -91,7 +106,47 @@ impl TfKnots {
                 materials.push(right);
             }
         }
-        TfKnots { scalars, materials }
+        TfKnots::from_parts(scalars, materials)
+    }
+
+    fn from_parts(scalars: Vec<f32>, materials: Vec<Material>) -> TfKnots {
+        let grey = materials.iter().all(|m| is_grey(m.tau) && is_grey(m.alpha));
+        let n = scalars.len();
+        let constant = |x0: f32, m: Material| Interval {
+            x0,
+            inv_width: 0.0,
+            start: m,
+            delta: Material::ZERO,
+        };
+        let mut intervals = vec![constant(scalars[0], materials[0])];
+        for k in 0..n - 1 {
+            let (x0, x1) = (scalars[k], scalars[k + 1]);
+            let (m0, m1) = (materials[k], materials[k + 1]);
+            intervals.push(Interval {
+                x0,
+                inv_width: if x1 > x0 { 1.0 / (x1 - x0) } else { 0.0 },
+                start: m0,
+                delta: Material {
+                    lum: m1.lum - m0.lum,
+                    tau: m1.tau - m0.tau,
+                    alpha: m1.alpha - m0.alpha,
+                },
+            });
+        }
+        intervals.push(constant(scalars[n - 1], materials[n - 1]));
+        TfKnots {
+            scalars,
+            materials,
+            intervals,
+            grey,
+        }
+    }
+
+    /// Whether every knot's attenuation and opacity is the same in all
+    /// channels (always so for a [`TransferFunction`], whose opacity is one
+    /// number).
+    pub fn is_grey(&self) -> bool {
+        self.grey
     }
 
     /// Knots given directly (each scalar's material). Panics on an empty or
@@ -100,7 +155,7 @@ impl TfKnots {
         assert!(!knots.is_empty(), "at least one knot");
         assert!(knots.windows(2).all(|w| w[0].0 <= w[1].0), "sorted knots");
         let (scalars, materials) = knots.into_iter().unzip();
-        TfKnots { scalars, materials }
+        TfKnots::from_parts(scalars, materials)
     }
 
     pub fn scalars(&self) -> &[f32] {
@@ -125,7 +180,7 @@ impl TfKnots {
     }
 
     /// `s` classified against the knots.
-    #[inline]
+    #[inline(always)]
     pub fn sample(&self, s: f32) -> KnotSample {
         let k = self.interval_up(s);
         KnotSample {
@@ -137,7 +192,7 @@ impl TfKnots {
 
     /// [`TfKnots::sample`], trying `near`'s interval first: along a ray the
     /// scalar mostly stays within one interval.
-    #[inline]
+    #[inline(always)]
     pub fn sample_near(&self, s: f32, near: &KnotSample) -> KnotSample {
         let k = near.interval as isize;
         let last = self.scalars.len() as isize - 1;
@@ -191,19 +246,16 @@ impl TfKnots {
     }
 
     /// Material at `s` by the linear function of interval `k`.
-    #[inline]
+    #[inline(always)]
     fn in_interval(&self, k: isize, s: f32) -> Material {
-        let last = self.scalars.len() as isize - 1;
-        if k < 0 {
-            return self.materials[0];
+        let index = (k + 1).clamp(0, self.intervals.len() as isize - 1) as usize;
+        let iv = &self.intervals[index];
+        let t = ((s - iv.x0) * iv.inv_width).clamp(0.0, 1.0);
+        Material {
+            lum: iv.start.lum + iv.delta.lum * t,
+            tau: iv.start.tau + iv.delta.tau * t,
+            alpha: iv.start.alpha + iv.delta.alpha * t,
         }
-        if k >= last {
-            return self.materials[last as usize];
-        }
-        let k = k as usize;
-        let (x0, x1) = (self.scalars[k], self.scalars[k + 1]);
-        let t = if x1 > x0 { (s - x0) / (x1 - x0) } else { 0.0 };
-        self.materials[k].lerp(&self.materials[k + 1], t.clamp(0.0, 1.0))
     }
 
     /// Calls `piece` for each piece of a segment with scalar `s_front` at
@@ -250,7 +302,11 @@ impl TfKnots {
             } else {
                 (f32::NEG_INFINITY, k)
             };
-            let reached = if increasing { bound >= s_back } else { bound <= s_back };
+            let reached = if increasing {
+                bound >= s_back
+            } else {
+                bound <= s_back
+            };
             let s_end = if reached { s_back } else { bound };
             let piece_length = if reached && count == 0 {
                 length
@@ -284,21 +340,21 @@ enum Side {
 fn material(tf: &TransferFunction, x: f32, side: Side, u: f32, mode: OpacityMode) -> Material {
     let color = one_sided(tf.color_points().iter().map(|p| (p.scalar, p.rgb)), x, side);
     let alpha_value = one_sided(
-        tf.opacity_points().iter().map(|p| (p.scalar, Vec3::splat(p.alpha))),
+        tf.opacity_points()
+            .iter()
+            .map(|p| (p.scalar, Vec3::splat(p.alpha))),
         x,
         side,
     );
     let alpha = alpha_value.clamp(Vec3::ZERO, Vec3::splat(ALPHA_MAX));
     let tau = match mode {
-        OpacityMode::Exact => {
-            Vec3::from_array(alpha.to_array().map(|a| -(-a).ln_1p())) / u
-        }
+        OpacityMode::Exact => Vec3::from_array(alpha.to_array().map(|a| -(-a).ln_1p())) / u,
         OpacityMode::Vtk => alpha / u,
     };
     Material {
-        lum: color,
-        tau,
-        alpha,
+        lum: color.into(),
+        tau: tau.into(),
+        alpha: alpha.into(),
     }
 }
 

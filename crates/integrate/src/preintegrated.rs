@@ -7,7 +7,7 @@
 
 use std::time::{Duration, Instant};
 
-use glam::Vec3;
+use glam::Vec3A;
 use rayon::prelude::*;
 
 use crate::exact::exact_weights;
@@ -27,8 +27,8 @@ pub struct PreintegrationTable {
     hi: f32,
     length: f32,
     /// `[i_front * size + i_back]`.
-    emitted: Vec<Vec3>,
-    transmittance: Vec<Vec3>,
+    emitted: Vec<Vec3A>,
+    transmittance: Vec<Vec3A>,
     build_time: Duration,
 }
 
@@ -118,7 +118,7 @@ impl PreintegrationTable {
         };
         let (i_f, t_f) = split(s_front);
         let (i_b, t_b) = split(s_back);
-        let bilinear = |v: &[Vec3]| {
+        let bilinear = |v: &[Vec3A]| {
             let r0 = i_f * n + i_b;
             let r1 = r0 + n;
             let near = v[r0].lerp(v[r0 + 1], t_b);
@@ -133,7 +133,7 @@ impl PreintegrationTable {
 
 /// Schulze's correction of a table entry for a segment `ratio` times the
 /// table's length: opacity by `T^ratio`, colour by the change of opacity.
-fn correct_length(emitted: Vec3, transmittance: Vec3, ratio: f32) -> SegmentLight {
+fn correct_length(emitted: Vec3A, transmittance: Vec3A, ratio: f32) -> SegmentLight {
     if ratio == 1.0 {
         return SegmentLight {
             emitted,

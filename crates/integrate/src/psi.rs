@@ -86,7 +86,7 @@ pub enum GammaSpacing {
 
 impl GammaSpacing {
     /// The table coordinate in `[0, 1]` of `tau D >= 0` (infinity maps to 1).
-    #[inline]
+    #[inline(always)]
     pub fn coord_of_tau_d(self, tau_d: f32) -> f32 {
         match self {
             GammaSpacing::Uniform => 1.0 - 1.0 / (1.0 + tau_d),
@@ -145,6 +145,9 @@ pub struct PsiTable {
     size: usize,
     spacing: GammaSpacing,
     values: Vec<f32>,
+    /// `size - 1` as f32 and the last cell index, for the lookup.
+    last: f32,
+    last_cell: u32,
 }
 
 impl PsiTable {
@@ -180,6 +183,8 @@ impl PsiTable {
             size,
             spacing,
             values,
+            last: (size - 1) as f32,
+            last_cell: (size - 2) as u32,
         })
     }
 
@@ -189,7 +194,9 @@ impl PsiTable {
         static CACHE: OnceLock<Mutex<HashMap<usize, Arc<PsiTable>>>> = OnceLock::new();
         let cache = CACHE.get_or_init(Default::default);
         // Held while building: a second caller waits instead of rebuilding.
-        let mut tables = cache.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+        let mut tables = cache
+            .lock()
+            .unwrap_or_else(|poisoned| poisoned.into_inner());
         if let Some(table) = tables.get(&size) {
             return Ok(Arc::clone(table));
         }
@@ -219,7 +226,7 @@ impl PsiTable {
     }
 
     /// Bilinear lookup by `(tau_b D, tau_f D)`, both `>= 0`.
-    #[inline]
+    #[inline(always)]
     pub fn lookup(&self, tau_d_back: f32, tau_d_front: f32) -> f32 {
         self.bilinear(
             self.spacing.coord_of_tau_d(tau_d_back),
@@ -247,23 +254,24 @@ impl PsiTable {
     }
 
     /// Bilinear interpolation at table coordinates `(u_b, u_f)` in `[0, 1]`.
-    #[inline]
+    #[inline(always)]
     fn bilinear(&self, u_back: f32, u_front: f32) -> f32 {
         let n = self.size;
-        let last = (n - 1) as f32;
-        let split = |u: f32| {
-            let x = u.clamp(0.0, 1.0) * last;
-            // NaN clamps to NaN; `as usize` maps it to 0 and the result stays NaN.
-            let i = (x as usize).min(n - 2);
-            (i, x - i as f32)
+        let x = u_back.clamp(0.0, 1.0) * self.last;
+        let y = u_front.clamp(0.0, 1.0) * self.last;
+        // NaN converts to cell 0 and its fraction stays NaN.
+        let i = (x as u32).min(self.last_cell);
+        let j = (y as u32).min(self.last_cell);
+        let (fx, fy) = (x - i as f32, y - j as f32);
+        let base = j as usize * n + i as usize;
+        let (Some(near), Some(far)) = (
+            self.values.get(base..base + 2),
+            self.values.get(base + n..base + n + 2),
+        ) else {
+            return f32::NAN;
         };
-        let (ib, fb) = split(u_back);
-        let (jf, ff) = split(u_front);
-        let row0 = jf * n + ib;
-        let row1 = row0 + n;
-        let v = &self.values;
-        let bottom = v[row0] + (v[row0 + 1] - v[row0]) * fb;
-        let top = v[row1] + (v[row1 + 1] - v[row1]) * fb;
-        bottom + (top - bottom) * ff
+        let bottom = near[0] + (near[1] - near[0]) * fx;
+        let top = far[0] + (far[1] - far[0]) * fx;
+        bottom + (top - bottom) * fy
     }
 }

@@ -133,7 +133,13 @@ mod tests {
     #[test]
     fn homogeneous_segment_is_beer_lambert() {
         // Eq. 2.17: I = I_0 e^{-tau D} + L (1 - e^{-tau D}).
-        for &(tau, d) in &[(0.0f64, 1.0f64), (1e-6, 3.0), (0.7, 2.0), (50.0, 1.0), (1e4, 0.5)] {
+        for &(tau, d) in &[
+            (0.0f64, 1.0f64),
+            (1e-6, 3.0),
+            (0.7, 2.0),
+            (50.0, 1.0),
+            (1e4, 0.5),
+        ] {
             let light = attenuation_segment(0.6, 0.6, tau, tau, d);
             let t = (-tau * d).exp();
             assert!((light.transmittance - t).abs() < 1e-15);

@@ -7,22 +7,17 @@ use std::time::{Duration, Instant};
 
 use glam::Vec3;
 
-use crate::average::{average_opacity_weights, average_weights};
-use crate::exact::exact_weights;
-use crate::knots::{KnotSample, Material, OpacityMode, Piece, TfKnots};
+use crate::kernels::{
+    Average, Exact, KernelVisitor, OpacityKernel, OpacityMethod, Ppi, Preintegrated, Reference,
+    Riemann, SegmentKernel, Split, Typed,
+};
+use crate::knots::{KnotSample, Material, OpacityMode, TfKnots};
 use crate::method::Method;
-use crate::opacity::{lin_avg_opacity_weights, lin_opacity_weights};
-use crate::ppi::ppi_weights;
 use crate::preintegrated::PreintegrationTable;
 use crate::psi::{GammaSpacing, PsiTable, PSI_TABLE_DEFAULT};
-use crate::reference;
-use crate::segment::{light_from_weights, SegmentLight, SegmentParams};
+use crate::segment::{SegmentLight, SegmentParams};
 use crate::tf::TransferFunction;
 use crate::IntegrateError;
-
-/// Most samples one Riemann-sum segment takes (a bound on the work of one
-/// call; the step is enlarged beyond it).
-pub const RIEMANN_MAX_SAMPLES: usize = 1 << 16;
 
 /// Settings of a [`ScalarIntegrator`].
 #[derive(Debug, Clone, PartialEq)]
@@ -145,9 +140,11 @@ impl ScalarIntegrator {
         let u = options.unit_distance;
         check_length(u, IntegrateError::UnitDistance)?;
         let material = |lum: Vec3, tau: Vec3| Material {
-            lum,
-            tau,
-            alpha: (Vec3::ONE - (-tau * u).exp()).min(Vec3::splat(crate::opacity::ALPHA_MAX)),
+            lum: lum.into(),
+            tau: tau.into(),
+            alpha: (Vec3::ONE - (-tau * u).exp())
+                .min(Vec3::splat(crate::opacity::ALPHA_MAX))
+                .into(),
         };
         let knots = TfKnots::from_materials(vec![
             (0.0, material(params.lum_back, params.tau_back)),
@@ -181,7 +178,6 @@ impl ScalarIntegrator {
 
     /// The light of a segment `length` long whose scalar goes linearly from
     /// `s_front` (the end nearer the eye) to `s_back`.
-    #[inline]
     pub fn integrate(&self, s_front: f32, s_back: f32, length: f32) -> SegmentLight {
         self.integrate_samples(&self.sample(s_front), &self.sample(s_back), length)
     }
@@ -198,116 +194,141 @@ impl ScalarIntegrator {
         self.knots.sample_near(s, near)
     }
 
-    /// [`ScalarIntegrator::integrate`] with both end scalars classified (a
-    /// ray walk classifies each face crossing once, for the two segments
-    /// meeting there).
-    #[inline]
+    /// [`ScalarIntegrator::integrate`] with both end scalars classified.
+    /// Dispatches on the method per call: inner loops should use
+    /// [`ScalarIntegrator::dispatch`] instead.
     pub fn integrate_samples(
         &self,
         front: &KnotSample,
         back: &KnotSample,
         length: f32,
     ) -> SegmentLight {
-        // Zero, negative and NaN lengths carry no material.
-        if length.is_nan() || length <= 0.0 {
-            return SegmentLight::CLEAR;
+        struct One<'s> {
+            front: &'s KnotSample,
+            back: &'s KnotSample,
+            length: f32,
         }
-        match self.method {
-            Method::Riemann => self.riemann(front.scalar, back.scalar, length),
-            Method::Preintegrated => match &self.preintegration {
-                Some(table) => table.lookup(front.scalar, back.scalar, length),
-                None => unreachable!("built with the integrator"),
-            },
-            _ if self.split => {
-                let mut light = SegmentLight::CLEAR;
-                self.knots
-                    .split_samples(front, back, length, |p| light = light.then(self.piece(p)));
-                light
+        impl KernelVisitor for One<'_> {
+            type Output = SegmentLight;
+            fn visit<K: SegmentKernel>(self, integrator: Typed<'_, K>) -> SegmentLight {
+                integrator.integrate_samples(self.front, self.back, self.length)
             }
-            _ => self.piece(&Piece {
-                front: front.material,
-                back: back.material,
-                length,
-            }),
         }
+        self.dispatch(One {
+            front,
+            back,
+            length,
+        })
     }
 
-    /// One piece with linear material.
-    #[inline]
-    fn piece(&self, p: &Piece) -> SegmentLight {
-        let (front, back, d) = (&p.front, &p.back, p.length);
-        let units = d / self.unit_distance;
-        let tau = |w: fn(f32, f32) -> crate::segment::Weights| {
-            light_from_weights(back.lum, front.lum, back.tau * d, front.tau * d, w)
+    /// Calls `visitor` with this integrator's method fixed in its type, so
+    /// that the visitor's loops are compiled for that method alone.
+    pub fn dispatch<V: KernelVisitor>(&self, visitor: V) -> V::Output {
+        let knots = &self.knots;
+        let split = self.split;
+        let grey = knots.is_grey();
+        let inv_unit_distance = 1.0 / self.unit_distance;
+        let opacity = |method| Split {
+            kernel: OpacityKernel {
+                inv_unit_distance,
+                method,
+            },
+            split,
         };
-        let opacity = |w: fn(f32, f32, f32) -> crate::segment::Weights| {
-            light_from_weights(back.lum, front.lum, back.alpha, front.alpha, |ab, af| {
-                w(ab, af, units)
-            })
+        let reference = |opacity_model| Split {
+            kernel: Reference {
+                inv_unit_distance,
+                opacity_model,
+            },
+            split,
         };
         match self.method {
             Method::Ppi => {
                 let table = self.psi.as_deref().expect("built with the integrator");
-                light_from_weights(back.lum, front.lum, back.tau * d, front.tau * d, |a, b| {
-                    ppi_weights(table, a, b)
+                if grey {
+                    visitor.visit(Typed {
+                        knots,
+                        kernel: Split {
+                            kernel: Ppi::<true> { table },
+                            split,
+                        },
+                    })
+                } else {
+                    visitor.visit(Typed {
+                        knots,
+                        kernel: Split {
+                            kernel: Ppi::<false> { table },
+                            split,
+                        },
+                    })
+                }
+            }
+            Method::Exact if grey => visitor.visit(Typed {
+                knots,
+                kernel: Split {
+                    kernel: Exact::<true>,
+                    split,
+                },
+            }),
+            Method::Exact => visitor.visit(Typed {
+                knots,
+                kernel: Split {
+                    kernel: Exact::<false>,
+                    split,
+                },
+            }),
+            Method::Average if grey => visitor.visit(Typed {
+                knots,
+                kernel: Split {
+                    kernel: Average::<true>,
+                    split,
+                },
+            }),
+            Method::Average => visitor.visit(Typed {
+                knots,
+                kernel: Split {
+                    kernel: Average::<false>,
+                    split,
+                },
+            }),
+            Method::AverageOpacity => visitor.visit(Typed {
+                knots,
+                kernel: opacity(OpacityMethod::Average),
+            }),
+            Method::LinAvgOpacity => visitor.visit(Typed {
+                knots,
+                kernel: opacity(OpacityMethod::LinAverage),
+            }),
+            Method::LinOpacity => visitor.visit(Typed {
+                knots,
+                kernel: opacity(OpacityMethod::Linear),
+            }),
+            Method::Reference => visitor.visit(Typed {
+                knots,
+                kernel: reference(false),
+            }),
+            Method::ReferenceOpacity => visitor.visit(Typed {
+                knots,
+                kernel: reference(true),
+            }),
+            Method::Riemann => visitor.visit(Typed {
+                knots,
+                kernel: Riemann {
+                    step: self.riemann_step,
+                },
+            }),
+            Method::Preintegrated => {
+                let table = self
+                    .preintegration
+                    .as_ref()
+                    .expect("built with the integrator");
+                visitor.visit(Typed {
+                    knots,
+                    kernel: Preintegrated { table },
                 })
             }
-            Method::Exact => tau(exact_weights),
-            Method::Average => tau(average_weights),
-            Method::AverageOpacity => opacity(average_opacity_weights),
-            Method::LinAvgOpacity => opacity(lin_avg_opacity_weights),
-            Method::LinOpacity => opacity(lin_opacity_weights),
-            Method::Reference => reference_light(p, |c| {
-                reference::attenuation_segment(
-                    f64::from(back.lum[c]),
-                    f64::from(front.lum[c]),
-                    f64::from(back.tau[c]),
-                    f64::from(front.tau[c]),
-                    f64::from(d),
-                )
-            }),
-            Method::ReferenceOpacity => reference_light(p, |c| {
-                reference::opacity_segment(
-                    f64::from(back.lum[c]),
-                    f64::from(front.lum[c]),
-                    f64::from(back.alpha[c]),
-                    f64::from(front.alpha[c]),
-                    f64::from(units),
-                )
-            }),
-            Method::Riemann | Method::Preintegrated => unreachable!("not split into pieces"),
         }
     }
-
-    /// Eq. 3.13: homogeneous steps at the midpoints of equal sub-segments,
-    /// each `L (1 - exp(-tau h))`, composited front to back. The transfer
-    /// function is sampled at each step's scalar.
-    fn riemann(&self, s_front: f32, s_back: f32, length: f32) -> SegmentLight {
-        let steps = ((length / self.riemann_step).ceil() as usize).clamp(1, RIEMANN_MAX_SAMPLES);
-        let h = length / steps as f32;
-        let mut light = SegmentLight::CLEAR;
-        for k in 0..steps {
-            let t = (k as f32 + 0.5) / steps as f32;
-            let m = self.knots.at(s_front + (s_back - s_front) * t);
-            let zeta = (-m.tau * h).exp();
-            light = light.then(SegmentLight {
-                emitted: m.lum * (Vec3::ONE - zeta),
-                transmittance: zeta,
-            });
-        }
-        light
-    }
-}
-
-/// A piece integrated per channel in f64.
-fn reference_light(_p: &Piece, channel: impl Fn(usize) -> reference::ReferenceLight) -> SegmentLight {
-    let mut light = SegmentLight::CLEAR;
-    for c in 0..3 {
-        let r = channel(c);
-        light.emitted[c] = r.emitted as f32;
-        light.transmittance[c] = r.transmittance as f32;
-    }
-    light
 }
 
 fn check_length(value: f32, error: fn(f32) -> IntegrateError) -> Result<(), IntegrateError> {

@@ -1,7 +1,7 @@
 //! One ray segment: its inputs (luminance and attenuation or opacity at the
 //! back and front ends, linear in between) and its light.
 
-use glam::Vec3;
+use glam::{Vec3, Vec3A};
 
 /// A segment with linear luminance and linear attenuation (dissertation
 /// eq. 2.19-2.20). `tau_*` is per unit length, `length` in the same unit.
@@ -46,21 +46,21 @@ impl SegmentParams {
 /// front end) and the fraction of light from behind that passes it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SegmentLight {
-    pub emitted: Vec3,
-    pub transmittance: Vec3,
+    pub emitted: Vec3A,
+    pub transmittance: Vec3A,
 }
 
 impl SegmentLight {
     /// No material: nothing emitted, everything passes.
     pub const CLEAR: SegmentLight = SegmentLight {
-        emitted: Vec3::ZERO,
-        transmittance: Vec3::ONE,
+        emitted: Vec3A::ZERO,
+        transmittance: Vec3A::ONE,
     };
 
     /// The light leaving the front of the segment when `incoming` enters
     /// its back: `I(D) = I_0 T + emitted` (eq. 2.8, Porter-Duff over).
     pub fn over(&self, incoming: Vec3) -> Vec3 {
-        incoming * self.transmittance + self.emitted
+        Vec3::from(Vec3A::from(incoming) * self.transmittance + self.emitted)
     }
 
     /// This segment in front of `behind` (front-to-back compositing, eq. 2.13).
@@ -89,27 +89,27 @@ pub struct Weights {
 
 impl Weights {
     /// Emitted light of eq. 5.5 for luminances at the back and front.
-    #[inline]
-    pub fn emitted(self, lum_back: Vec3, lum_front: Vec3) -> Vec3 {
+    #[inline(always)]
+    pub fn emitted(self, lum_back: Vec3A, lum_front: Vec3A) -> Vec3A {
         lum_front * (1.0 - self.psi) + lum_back * (self.psi - self.zeta)
     }
 
     /// The light of a segment whose channels all share these weights.
-    #[inline]
-    pub fn light(self, lum_back: Vec3, lum_front: Vec3) -> SegmentLight {
+    #[inline(always)]
+    pub fn light(self, lum_back: Vec3A, lum_front: Vec3A) -> SegmentLight {
         SegmentLight {
             emitted: self.emitted(lum_back, lum_front),
-            transmittance: Vec3::splat(self.zeta),
+            transmittance: Vec3A::splat(self.zeta),
         }
     }
 
     /// The light of a segment with per-channel weights.
     #[inline]
-    pub fn light_rgb(w: [Weights; 3], lum_back: Vec3, lum_front: Vec3) -> SegmentLight {
-        let zeta = Vec3::new(w[0].zeta, w[1].zeta, w[2].zeta);
-        let psi = Vec3::new(w[0].psi, w[1].psi, w[2].psi);
+    pub fn light_rgb(w: [Weights; 3], lum_back: Vec3A, lum_front: Vec3A) -> SegmentLight {
+        let zeta = Vec3A::new(w[0].zeta, w[1].zeta, w[2].zeta);
+        let psi = Vec3A::new(w[0].psi, w[1].psi, w[2].psi);
         SegmentLight {
-            emitted: lum_front * (Vec3::ONE - psi) + lum_back * (psi - zeta),
+            emitted: lum_front * (Vec3A::ONE - psi) + lum_back * (psi - zeta),
             transmittance: zeta,
         }
     }
@@ -117,18 +117,30 @@ impl Weights {
 
 /// Whether all three channels of `v` are equal (a grey attenuation needs
 /// one weight computation instead of three).
-#[inline]
-pub(crate) fn is_grey(v: Vec3) -> bool {
+#[inline(always)]
+pub(crate) fn is_grey(v: Vec3A) -> bool {
     v.x == v.y && v.y == v.z
 }
 
+/// The weights of a segment whose attenuation is known to be grey: once.
+#[inline(always)]
+pub(crate) fn grey_light(
+    lum_back: Vec3A,
+    lum_front: Vec3A,
+    back: Vec3A,
+    front: Vec3A,
+    weights: impl Fn(f32, f32) -> Weights,
+) -> SegmentLight {
+    weights(back.x, front.x).light(lum_back, lum_front)
+}
+
 /// The weights of a segment, per channel or once when both ends are grey.
-#[inline]
+#[inline(always)]
 pub(crate) fn light_from_weights(
-    lum_back: Vec3,
-    lum_front: Vec3,
-    back: Vec3,
-    front: Vec3,
+    lum_back: Vec3A,
+    lum_front: Vec3A,
+    back: Vec3A,
+    front: Vec3A,
     weights: impl Fn(f32, f32) -> Weights,
 ) -> SegmentLight {
     if is_grey(back) && is_grey(front) {

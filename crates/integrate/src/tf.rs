@@ -102,8 +102,14 @@ impl TransferFunction {
                 });
             }
         }
-        check_order("colour", &color.iter().map(|p| p.scalar).collect::<Vec<_>>())?;
-        check_order("opacity", &opacity.iter().map(|p| p.scalar).collect::<Vec<_>>())?;
+        check_order(
+            "colour",
+            &color.iter().map(|p| p.scalar).collect::<Vec<_>>(),
+        )?;
+        check_order(
+            "opacity",
+            &opacity.iter().map(|p| p.scalar).collect::<Vec<_>>(),
+        )?;
         Ok(TransferFunction { color, opacity })
     }
 
@@ -129,7 +135,9 @@ impl TransferFunction {
         let (i, t) = locate(self.opacity.len(), |k| self.opacity[k].scalar, s);
         match t {
             None => self.opacity[i].alpha,
-            Some(t) => self.opacity[i].alpha + (self.opacity[i + 1].alpha - self.opacity[i].alpha) * t,
+            Some(t) => {
+                self.opacity[i].alpha + (self.opacity[i + 1].alpha - self.opacity[i].alpha) * t
+            }
         }
     }
 
@@ -155,7 +163,8 @@ impl TransferFunction {
         let (old_lo, old_hi) = self.scalar_range();
         let map = |s: f32| {
             if old_hi > old_lo {
-                let t = (f64::from(s) - f64::from(old_lo)) / (f64::from(old_hi) - f64::from(old_lo));
+                let t =
+                    (f64::from(s) - f64::from(old_lo)) / (f64::from(old_hi) - f64::from(old_lo));
                 (f64::from(lo) + t * (f64::from(hi) - f64::from(lo))) as f32
             } else {
                 lo

@@ -13,18 +13,48 @@ use tetray_integrate::{
 /// not coincide with the opacity knots, plus a step in colour.
 fn spiky_tf() -> TransferFunction {
     let color = vec![
-        ColorPoint { scalar: 0.0, rgb: Vec3::new(0.0, 0.0, 1.0) },
-        ColorPoint { scalar: 0.35, rgb: Vec3::new(0.0, 1.0, 0.0) },
-        ColorPoint { scalar: 0.6, rgb: Vec3::new(1.0, 1.0, 0.0) },
-        ColorPoint { scalar: 0.6, rgb: Vec3::new(1.0, 0.0, 0.0) },
-        ColorPoint { scalar: 1.0, rgb: Vec3::new(1.0, 1.0, 1.0) },
+        ColorPoint {
+            scalar: 0.0,
+            rgb: Vec3::new(0.0, 0.0, 1.0),
+        },
+        ColorPoint {
+            scalar: 0.35,
+            rgb: Vec3::new(0.0, 1.0, 0.0),
+        },
+        ColorPoint {
+            scalar: 0.6,
+            rgb: Vec3::new(1.0, 1.0, 0.0),
+        },
+        ColorPoint {
+            scalar: 0.6,
+            rgb: Vec3::new(1.0, 0.0, 0.0),
+        },
+        ColorPoint {
+            scalar: 1.0,
+            rgb: Vec3::new(1.0, 1.0, 1.0),
+        },
     ];
     let opacity = vec![
-        OpacityPoint { scalar: 0.0, alpha: 0.05 },
-        OpacityPoint { scalar: 0.48, alpha: 0.05 },
-        OpacityPoint { scalar: 0.5, alpha: 0.95 },
-        OpacityPoint { scalar: 0.52, alpha: 0.05 },
-        OpacityPoint { scalar: 1.0, alpha: 0.2 },
+        OpacityPoint {
+            scalar: 0.0,
+            alpha: 0.05,
+        },
+        OpacityPoint {
+            scalar: 0.48,
+            alpha: 0.05,
+        },
+        OpacityPoint {
+            scalar: 0.5,
+            alpha: 0.95,
+        },
+        OpacityPoint {
+            scalar: 0.52,
+            alpha: 0.05,
+        },
+        OpacityPoint {
+            scalar: 1.0,
+            alpha: 0.2,
+        },
     ];
     TransferFunction::new(color, opacity).unwrap()
 }
@@ -76,7 +106,11 @@ fn split_methods_match_a_fine_riemann_sum() {
         ..IntegratorOptions::default()
     };
     let knots = TfKnots::new(&tf, options.unit_distance, OpacityMode::Exact);
-    for (method, tol) in [(Method::Exact, 2e-6), (Method::Ppi, 2e-5), (Method::Reference, 2e-6)] {
+    for (method, tol) in [
+        (Method::Exact, 2e-6),
+        (Method::Ppi, 2e-5),
+        (Method::Reference, 2e-6),
+    ] {
         let integrator = ScalarIntegrator::new(method, &tf, &options).unwrap();
         for &(sf, sb, d) in &SEGMENTS {
             // 2e5 midpoint steps: error ~ h^2 |f''| / 24, below 1e-7 here.
@@ -103,8 +137,12 @@ fn not_splitting_at_knots_misses_the_spike() {
     };
     let (sf, sb, d) = (0.3, 0.7, 0.5);
     let want = fine_riemann(&knots, sf, sb, d, 200_000);
-    let with = ScalarIntegrator::new(Method::Ppi, &tf, &split).unwrap().integrate(sf, sb, d);
-    let without = ScalarIntegrator::new(Method::Ppi, &tf, &unsplit).unwrap().integrate(sf, sb, d);
+    let with = ScalarIntegrator::new(Method::Ppi, &tf, &split)
+        .unwrap()
+        .integrate(sf, sb, d);
+    let without = ScalarIntegrator::new(Method::Ppi, &tf, &unsplit)
+        .unwrap()
+        .integrate(sf, sb, d);
     let (e_with, e_without) = (max_diff(with, want), max_diff(without, want));
     eprintln!("spike: split error {e_with:.2e}, unsplit error {e_without:.2e}");
     assert!(e_with < 2e-5 && e_without > 0.1, "{e_with} {e_without}");
@@ -124,11 +162,19 @@ fn pieces_cover_the_segment_in_order() {
             pieces.push(*p);
         });
         assert_eq!(count, pieces.len());
-        assert!((total - f64::from(d)).abs() < 1e-6 * f64::from(d), "({sf}, {sb}): {total}");
+        assert!(
+            (total - f64::from(d)).abs() < 1e-6 * f64::from(d),
+            "({sf}, {sb}): {total}"
+        );
         // Interior knots between the end scalars, each cutting once (the
         // step's two knots cut once).
         let (lo, hi) = (sf.min(sb), sf.max(sb));
-        let mut cuts: Vec<f32> = knots.scalars().iter().copied().filter(|&x| x > lo && x < hi).collect();
+        let mut cuts: Vec<f32> = knots
+            .scalars()
+            .iter()
+            .copied()
+            .filter(|&x| x > lo && x < hi)
+            .collect();
         cuts.dedup();
         assert_eq!(pieces.len(), cuts.len() + 1, "({sf}, {sb})");
         // Adjacent pieces meet with equal material unless a step sits there.
@@ -168,7 +214,12 @@ fn full_preintegration_matches_at_its_length_and_corrects_others() {
         // Off the nodes at the table's length: bilinear error shrinks with size.
         let worst = [(0.31, 0.77), (0.505, 0.49), (0.13, 0.62)]
             .iter()
-            .map(|&(f, b)| max_diff(integrator.integrate(f, b, 0.5), fine_riemann(&knots, f, b, 0.5, 200_000)))
+            .map(|&(f, b)| {
+                max_diff(
+                    integrator.integrate(f, b, 0.5),
+                    fine_riemann(&knots, f, b, 0.5, 200_000),
+                )
+            })
             .fold(0.0, f64::max);
         errors.push(worst);
     }
@@ -185,8 +236,14 @@ fn full_preintegration_matches_at_its_length_and_corrects_others() {
     for d in [0.05, 0.5, 2.0, 9.0] {
         let a = integrator.integrate(0.9, 0.9, d);
         let b = exact.integrate(0.9, 0.9, d);
-        assert!((a.emitted - b.emitted).abs().max_element() < 3e-5, "D {d}: {a:?} vs {b:?}");
-        assert!((a.transmittance - b.transmittance).abs().max_element() < 3e-5, "D {d}");
+        assert!(
+            (a.emitted - b.emitted).abs().max_element() < 3e-5,
+            "D {d}: {a:?} vs {b:?}"
+        );
+        assert!(
+            (a.transmittance - b.transmittance).abs().max_element() < 3e-5,
+            "D {d}"
+        );
     }
 }
 
@@ -196,7 +253,10 @@ fn riemann_converges_to_the_exact_integral() {
     let exact = ScalarIntegrator::new(
         Method::Exact,
         &tf,
-        &IntegratorOptions { unit_distance: 0.25, ..IntegratorOptions::default() },
+        &IntegratorOptions {
+            unit_distance: 0.25,
+            ..IntegratorOptions::default()
+        },
     )
     .unwrap();
     // Away from the spike, where the midpoint rule's h^2 error shows.
@@ -209,12 +269,17 @@ fn riemann_converges_to_the_exact_integral() {
             riemann_step: step,
             ..IntegratorOptions::default()
         };
-        let got = ScalarIntegrator::new(Method::Riemann, &tf, &options).unwrap().integrate(sf, sb, d);
+        let got = ScalarIntegrator::new(Method::Riemann, &tf, &options)
+            .unwrap()
+            .integrate(sf, sb, d);
         let e = (got.emitted - want.emitted).abs().max_element();
         errors.push(e);
     }
     eprintln!("riemann errors at steps 0.4/0.1/0.025: {errors:?}");
     // Second order: a quarter of the step, a sixteenth of the error.
-    assert!(errors[0] > 10.0 * errors[1] && errors[1] > 10.0 * errors[2], "{errors:?}");
+    assert!(
+        errors[0] > 10.0 * errors[1] && errors[1] > 10.0 * errors[2],
+        "{errors:?}"
+    );
     assert!(errors[2] < 1e-4);
 }

@@ -72,7 +72,10 @@ fn extremely_opaque_corner_stays_within_3e4() {
     eprintln!("1024^2 quadratic table with edges: max bilinear error {e:.3e} at ({gb}, {gf})");
     assert!(e < 3e-4, "max error {e} at ({gb}, {gf})");
     if e > 1e-5 {
-        assert!(gb > 0.999 && gf > 0.999, "large error away from the corner: ({gb}, {gf})");
+        assert!(
+            gb > 0.999 && gf > 0.999,
+            "large error away from the corner: ({gb}, {gf})"
+        );
     }
 }
 
@@ -158,7 +161,10 @@ fn table_nodes_hold_the_f64_values() {
         for j in [0, 5, 31, 63] {
             let want = psi(tau_d(table.node_gamma(i)), tau_d(table.node_gamma(j)));
             let got = table.values()[j * n + i];
-            assert!((f64::from(got) - want).abs() <= 6e-8 * want.max(1e-30), "node ({i}, {j})");
+            assert!(
+                (f64::from(got) - want).abs() <= 6e-8 * want.max(1e-30),
+                "node ({i}, {j})"
+            );
         }
     }
     assert!(PsiTable::build(1, GammaSpacing::Quadratic).is_err());

@@ -66,7 +66,10 @@ fn attenuation_methods_on_the_dissertation_sweeps() {
         let average = sweep_error(Method::Average, d, &options);
         eprintln!("D = {d}: exact {exact:?}, ppi {ppi:?}, average {average:?}");
         // Exact: f64 closed form rounded to f32 (output ~1e-7).
-        assert!(exact.0 < 1e-6 && exact.1 < 1e-6, "exact at D = {d}: {exact:?}");
+        assert!(
+            exact.0 < 1e-6 && exact.1 < 1e-6,
+            "exact at D = {d}: {exact:?}"
+        );
         // PPI: bilinear table error (below 1.1e-6 at 1024^2, see psi_table.rs)
         // plus f32 rounding of eq. 5.5.
         assert!(ppi.0 < 1e-5 && ppi.1 < 1e-6, "ppi at D = {d}: {ppi:?}");
@@ -76,7 +79,10 @@ fn attenuation_methods_on_the_dissertation_sweeps() {
         assert!(average.1 < 1e-6);
         assert!(average.0 < 0.5, "average at D = {d}: {average:?}");
         if d >= 0.1 {
-            assert!(average.0 > 10.0 * ppi.0, "average should be far worse than PPI at D = {d}");
+            assert!(
+                average.0 > 10.0 * ppi.0,
+                "average should be far worse than PPI at D = {d}"
+            );
         }
     }
 }
@@ -107,12 +113,27 @@ fn opacity_methods_on_the_dissertation_sweeps() {
         // parabola of eq. 5.13 misses zeta = e^-1 by 0.024), we measure 3.4x
         // to 4.2x: 0.068 vs 0.23 / 0.26 at D = 1, 0.0092 vs 0.038 at D = 0.1.
         if d >= 0.1 {
-            assert!(lin.0 < 0.3 * lin_avg.0, "lin-opacity vs lin-avg-opacity at D = {d}");
-            assert!(lin.0 < 0.3 * avg.0, "lin-opacity vs average-opacity at D = {d}");
-            assert!(lin.1 < 0.25 * avg.1, "lin-opacity zeta vs averaged at D = {d}");
+            assert!(
+                lin.0 < 0.3 * lin_avg.0,
+                "lin-opacity vs lin-avg-opacity at D = {d}"
+            );
+            assert!(
+                lin.0 < 0.3 * avg.0,
+                "lin-opacity vs average-opacity at D = {d}"
+            );
+            assert!(
+                lin.1 < 0.25 * avg.1,
+                "lin-opacity zeta vs averaged at D = {d}"
+            );
         }
-        assert!(lin.0 < 0.08 && lin.1 < 0.03, "lin-opacity at D = {d}: {lin:?}");
-        assert!(avg.0 < 0.3 && lin_avg.0 < 0.3, "D = {d}: {avg:?} {lin_avg:?}");
+        assert!(
+            lin.0 < 0.08 && lin.1 < 0.03,
+            "lin-opacity at D = {d}: {lin:?}"
+        );
+        assert!(
+            avg.0 < 0.3 && lin_avg.0 < 0.3,
+            "D = {d}: {avg:?} {lin_avg:?}"
+        );
     }
 }
 
@@ -123,7 +144,13 @@ fn every_method_is_exact_for_constant_parameters() {
         preintegration_length: 0.5,
         ..IntegratorOptions::default()
     };
-    for &(tau, d) in &[(0.0f32, 1.0f32), (0.3, 0.001), (0.7, 2.0), (3.0, 1.5), (20.0, 10.0)] {
+    for &(tau, d) in &[
+        (0.0f32, 1.0f32),
+        (0.3, 0.001),
+        (0.7, 2.0),
+        (3.0, 1.5),
+        (20.0, 10.0),
+    ] {
         let lum = Vec3::new(0.9, 0.5, 0.1);
         let p = SegmentParams {
             lum_back: lum,

@@ -4,9 +4,11 @@
 use std::path::Path;
 use std::time::Instant;
 
-use glam::Vec3;
 use tetray_boundary_bvh::BuildPreset;
-use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunction};
+use tetray_integrate::{
+    IntegratorOptions, KernelVisitor, Method, ScalarIntegrator, SegmentKernel, TransferFunction,
+    Typed,
+};
 use tetray_mesh::{load, LoadOptions};
 use tetray_raycast::{render_cpu, Camera, RenderOptions, Scene, SegmentIntegrator};
 
@@ -20,14 +22,14 @@ impl SegmentIntegrator for Absorb {
         s
     }
 
-    fn segment(&self, &s_front: &f32, &s_back: &f32, length: f32) -> (Vec3, Vec3) {
+    fn segment(&self, &s_front: &f32, &s_back: &f32, length: f32) -> (glam::Vec3A, glam::Vec3A) {
         let tau = 0.5 * (s_front + s_back) * 0.2;
         let t = if self.cheap {
             1.0 - tau * length * 1e-3
         } else {
             (-tau * length).exp()
         };
-        (Vec3::splat(1.0 - t), Vec3::splat(t))
+        (glam::Vec3A::splat(1.0 - t), glam::Vec3A::splat(t))
     }
 }
 
@@ -64,11 +66,14 @@ fn main() {
     let (lo_s, hi_s) = scene
         .scalar
         .iter()
-        .fold((f32::INFINITY, f32::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+        .fold((f32::INFINITY, f32::NEG_INFINITY), |(a, b), &v| {
+            (a.min(v), b.max(v))
+        });
     let tf = TransferFunction::default_for_range(lo_s, hi_s);
     let unit = (hi - lo).length() / (scene.tet_count() as f32).cbrt();
     let options = IntegratorOptions {
         unit_distance: unit,
+        psi_table_size: std::env::var("PSI_SIZE").map_or(1024, |s| s.parse().unwrap()),
         ..IntegratorOptions::default()
     };
     if method == "absorb" {
@@ -76,7 +81,14 @@ fn main() {
     } else {
         let method: Method = method.parse().unwrap();
         let scalar = ScalarIntegrator::new(method, &tf, &options).unwrap();
-        time_frames(&scene, &camera, &scalar, &opts, frames);
+        struct Time<'a>(&'a Scene, &'a Camera, &'a RenderOptions, usize);
+        impl KernelVisitor for Time<'_> {
+            type Output = ();
+            fn visit<K: SegmentKernel>(self, integrator: Typed<'_, K>) {
+                time_frames(self.0, self.1, &integrator, self.2, self.3);
+            }
+        }
+        scalar.dispatch(Time(&scene, &camera, &opts, frames));
     }
 }
 

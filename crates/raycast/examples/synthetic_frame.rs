@@ -15,9 +15,9 @@ impl SegmentIntegrator for Absorb {
         s
     }
 
-    fn segment(&self, &s_front: &f32, &s_back: &f32, length: f32) -> (Vec3, Vec3) {
+    fn segment(&self, &s_front: &f32, &s_back: &f32, length: f32) -> (glam::Vec3A, glam::Vec3A) {
         let t = 1.0 - 0.5 * (s_front + s_back) * length * 1e-3;
-        (Vec3::splat(1.0 - t), Vec3::splat(t))
+        (glam::Vec3A::splat(1.0 - t), glam::Vec3A::splat(t))
     }
 }
 

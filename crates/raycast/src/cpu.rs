@@ -5,6 +5,7 @@ use std::time::{Duration, Instant};
 
 use glam::Vec3;
 use rayon::prelude::*;
+use tetray_integrate::{KernelVisitor, ScalarIntegrator, SegmentKernel, Typed};
 
 use crate::camera::{Camera, CameraError, PixelRays};
 use crate::image::{Image, ImageError};
@@ -172,6 +173,51 @@ pub fn render_cpu_with_progress<I: SegmentIntegrator + ?Sized>(
     stats.elapsed = start.elapsed();
     stats.eye_inside_bounds = job.eye_inside;
     Ok(RenderOutput { image, stats })
+}
+
+/// [`render_cpu`] with a transfer-function integrator: the frame is
+/// rendered by a walk compiled for the integrator's method.
+pub fn render_scalar(
+    scene: &Scene,
+    camera: &Camera,
+    integrator: &ScalarIntegrator,
+    opts: &RenderOptions,
+) -> Result<RenderOutput, RenderError> {
+    render_scalar_with_progress(scene, camera, integrator, opts, None)
+}
+
+/// [`render_scalar`] with progress, as [`render_cpu_with_progress`].
+pub fn render_scalar_with_progress(
+    scene: &Scene,
+    camera: &Camera,
+    integrator: &ScalarIntegrator,
+    opts: &RenderOptions,
+    progress: Option<&(dyn Fn(usize, usize) + Sync)>,
+) -> Result<RenderOutput, RenderError> {
+    struct Render<'a> {
+        scene: &'a Scene,
+        camera: &'a Camera,
+        opts: &'a RenderOptions,
+        progress: Option<&'a (dyn Fn(usize, usize) + Sync)>,
+    }
+    impl KernelVisitor for Render<'_> {
+        type Output = Result<RenderOutput, RenderError>;
+        fn visit<K: SegmentKernel>(self, integrator: Typed<'_, K>) -> Self::Output {
+            render_cpu_with_progress(
+                self.scene,
+                self.camera,
+                &integrator,
+                self.opts,
+                self.progress,
+            )
+        }
+    }
+    integrator.dispatch(Render {
+        scene,
+        camera,
+        opts,
+        progress,
+    })
 }
 
 /// Everything the workers share for one frame.

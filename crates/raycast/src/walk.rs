@@ -3,10 +3,8 @@
 //! (dissertation ch. 2: the ray integral is a product of segment
 //! transmittances and a sum of attenuated segment emissions).
 
-use glam::Vec3;
-use tetray_boundary_bvh::watertight::{
-    crossing_barycentric, edge_function, edge_sign, RayFrame, RayPoint,
-};
+use glam::{Vec3, Vec3A};
+use tetray_boundary_bvh::watertight::{crossing_barycentric, edge_sign, RayFrame, RayPoint};
 use tetray_mesh::{FACE_VERTICES, NO_NEIGHBOR};
 
 use crate::scene::Scene;
@@ -34,7 +32,7 @@ pub trait SegmentIntegrator: Sync {
     /// Emitted light reaching the segment's front end and the segment's
     /// transmittance, for a scalar linear from `front` to `back` over
     /// `length` world units.
-    fn segment(&self, front: &Self::Sample, back: &Self::Sample, length: f32) -> (Vec3, Vec3);
+    fn segment(&self, front: &Self::Sample, back: &Self::Sample, length: f32) -> (Vec3A, Vec3A);
 }
 
 /// Limits of one walk.
@@ -60,8 +58,8 @@ pub(crate) struct RayCounters {
 /// Light gathered along one ray: premultiplied colour and transmittance.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct RayLight {
-    pub color: Vec3,
-    pub transmittance: Vec3,
+    pub color: Vec3A,
+    pub transmittance: Vec3A,
 }
 
 /// For apex `a` (the vertex opposite the entry face): its three other
@@ -137,66 +135,57 @@ const fn bit_of(others: [usize; 3], code: usize, k: usize) -> bool {
     code & (1 << i) != 0
 }
 
-/// A point projected into the ray frame, with its scalar.
-#[inline]
-fn project(scene: &Scene, ray: &RayFrame, point: u32) -> [f32; 4] {
-    let q = scene.points[point as usize];
-    let p = ray.project(Vec3::new(q[0], q[1], q[2]));
-    [p.x, p.y, p.z, q[3]]
-}
-
-/// The current tetrahedron: its point indices, and per vertex its
-/// projection into the ray frame and its scalar, `[x, y, z, s]`.
+/// The current tetrahedron in the frame of the ray: per vertex its position
+/// across the ray (`x`, `y`, in f64 so that edge functions of f32
+/// projections are exact), its distance along the ray and its scalar.
+///
+/// All four vertices are projected anew at every step, lane-parallel:
+/// `project4` gives a point the same bits whatever its lane and whenever it
+/// is projected, so shared faces still agree exactly, and no bookkeeping of
+/// which vertices carry over is needed.
 #[derive(Clone, Copy)]
 struct Cell {
-    verts: [u32; 4],
-    v: [[f32; 4]; 4],
+    x: [f64; 4],
+    y: [f64; 4],
+    z: [f32; 4],
+    s: [f32; 4],
 }
 
 impl Cell {
-    #[inline]
+    #[inline(always)]
     fn load(scene: &Scene, ray: &RayFrame, verts: [u32; 4]) -> Cell {
-        let mut cell = Cell {
-            verts,
-            v: [[0.0; 4]; 4],
-        };
-        for (v, &point) in cell.v.iter_mut().zip(&verts) {
-            *v = project(scene, ray, point);
+        let q = verts.map(|v| scene.points[v as usize]);
+        let p = ray.project4(q.map(|q| Vec3::new(q[0], q[1], q[2])));
+        Cell {
+            x: p.map(|p| f64::from(p.x)),
+            y: p.map(|p| f64::from(p.y)),
+            z: p.map(|p| p.z),
+            s: q.map(|q| q[3]),
         }
-        cell
     }
 
-    /// Moves into the neighbour `verts`, whose vertex `apex` is the only one
-    /// not shared with this cell: the shared vertices keep their projections
-    /// (a point always projects to the same bits), the apex is projected.
-    #[inline]
-    fn step(&mut self, scene: &Scene, ray: &RayFrame, verts: [u32; 4], apex: usize) {
-        let (old, old_verts) = (self.v, self.verts);
-        for (i, &point) in verts.iter().enumerate() {
-            // Branch-free: the index of the old vertex equal to `point`
-            // (0 for the apex, overwritten below).
-            let j = usize::from(point == old_verts[1])
-                | (usize::from(point == old_verts[2]) << 1)
-                | (usize::from(point == old_verts[3]) * 3);
-            self.v[i] = old[j];
-        }
-        self.v[apex] = project(scene, ray, verts[apex]);
-        self.verts = verts;
+    /// Edge function of the directed edge `a -> b` (exact in f64).
+    #[inline(always)]
+    fn edge(&self, a: usize, b: usize) -> f64 {
+        self.x[a] * self.y[b] - self.y[a] * self.x[b]
     }
 
     #[inline]
-    fn p(&self, i: usize) -> RayPoint {
-        let [x, y, z, _] = self.v[i];
-        RayPoint { x, y, z }
+    fn point(&self, i: usize) -> RayPoint {
+        RayPoint {
+            x: self.x[i] as f32,
+            y: self.y[i] as f32,
+            z: self.z[i],
+        }
     }
 
     /// Distance to and scalar at the crossing of face `f`.
     #[inline]
     fn crossing(&self, f: usize) -> (f32, f32) {
         let [a, b, c] = FACE_VERTICES[f];
-        let (t, w) = crossing_barycentric(self.p(a), self.p(b), self.p(c));
-        let s = |i: usize| f64::from(self.v[i][3]);
-        let value = w[0] * s(a) + w[1] * s(b) + w[2] * s(c);
+        let (t, w) = crossing_barycentric(self.point(a), self.point(b), self.point(c));
+        let value =
+            w[0] * f64::from(self.s[a]) + w[1] * f64::from(self.s[b]) + w[2] * f64::from(self.s[c]);
         (t, value as f32)
     }
 
@@ -206,31 +195,29 @@ impl Cell {
     /// The distance and weights are those of `crossing_barycentric` (the
     /// edge functions normalised), reusing the two apex edge functions
     /// computed for the signs.
-    #[inline]
+    #[inline(always)]
     fn exit(&self, f_in: usize) -> Option<(usize, f32, f32)> {
         let table = &APEX_TABLES[f_in];
-        let apex = self.p(f_in);
+        let apex = f_in;
         let mut e = [0.0f64; 4];
         let mut code = 0;
         for (i, &k) in table.others.iter().enumerate() {
-            let pk = self.p(k);
-            e[k] = edge_function(apex, pk);
+            e[k] = self.edge(apex, k);
             // Exact zeros (the ray through an edge or vertex) take the
             // symbolic perturbation's side.
             let positive = if e[k] != 0.0 {
                 e[k] > 0.0
             } else {
-                edge_sign(apex, pk) > 0
+                edge_sign(self.point(apex), self.point(k)) > 0
             };
             code |= usize::from(positive) << i;
         }
         let (f, next, prev) = table.exits[code]?;
         // Weights of (apex, next, prev): each the edge function of the
         // opposite edge, with ef(prev, apex) = -ef(apex, prev) exactly.
-        let (pn, pp) = (self.p(next), self.p(prev));
-        let w = [edge_function(pn, pp), -e[prev], e[next]];
-        let z = [apex.z, pn.z, pp.z];
-        let s = [self.v[f_in][3], self.v[next][3], self.v[prev][3]];
+        let w = [self.edge(next, prev), -e[prev], e[next]];
+        let z = [self.z[apex], self.z[next], self.z[prev]];
+        let s = [self.s[apex], self.s[next], self.s[prev]];
         let lo = z[0].min(z[1]).min(z[2]);
         let hi = z[0].max(z[1]).max(z[2]);
         let sum = w[0] + w[1] + w[2];
@@ -267,8 +254,8 @@ pub(crate) fn trace<I: SegmentIntegrator + ?Sized>(
     counters: &mut RayCounters,
 ) -> RayLight {
     let mut light = RayLight {
-        color: Vec3::ZERO,
-        transmittance: Vec3::ONE,
+        color: Vec3A::ZERO,
+        transmittance: Vec3A::ONE,
     };
     // Distance reached so far; never decreases.
     let mut t_cursor = t_start;
@@ -340,27 +327,30 @@ pub(crate) fn trace<I: SegmentIntegrator + ?Sized>(
             }
             tet = (next >> 2) as usize;
             f_in = (next & 3) as usize;
-            cell.step(scene, ray, scene.walk[tet].verts, f_in);
+            cell = Cell::load(scene, ray, scene.walk[tet].verts);
         }
     }
     light
 }
 
-impl SegmentIntegrator for tetray_integrate::ScalarIntegrator {
+/// An integrator with its method fixed in its type (see
+/// `ScalarIntegrator::dispatch`): the walk's inner loop is compiled per
+/// method.
+impl<K: tetray_integrate::SegmentKernel> SegmentIntegrator for tetray_integrate::Typed<'_, K> {
     type Sample = tetray_integrate::KnotSample;
 
-    #[inline]
+    #[inline(always)]
     fn sample(&self, s: f32) -> Self::Sample {
-        tetray_integrate::ScalarIntegrator::sample(self, s)
+        tetray_integrate::Typed::sample(self, s)
     }
 
-    #[inline]
+    #[inline(always)]
     fn sample_near(&self, s: f32, near: &Self::Sample) -> Self::Sample {
-        tetray_integrate::ScalarIntegrator::sample_near(self, s, near)
+        tetray_integrate::Typed::sample_near(self, s, near)
     }
 
-    #[inline]
-    fn segment(&self, front: &Self::Sample, back: &Self::Sample, length: f32) -> (Vec3, Vec3) {
+    #[inline(always)]
+    fn segment(&self, front: &Self::Sample, back: &Self::Sample, length: f32) -> (Vec3A, Vec3A) {
         let light = self.integrate_samples(front, back, length);
         (light.emitted, light.transmittance)
     }

@@ -35,7 +35,9 @@ use tetray_integrate::{
 use tetray_raycast::scenes::{
     add_field, box_grid, hollow_box, jittered_box, two_boxes, CellSplit, ScalarSpec,
 };
-use tetray_raycast::{render_cpu, Camera, Image, RenderOptions, RenderOutput, RenderStats, Scene};
+use tetray_raycast::{
+    render_scalar, Camera, Image, RenderOptions, RenderOutput, RenderStats, Scene,
+};
 
 /// Pixels per side of the oblique views.
 const SIZE: u32 = 40;
@@ -106,7 +108,7 @@ fn render(
     integrator: &ScalarIntegrator,
     opts: &RenderOptions,
 ) -> RenderOutput {
-    let out = render_cpu(scene, camera, integrator, opts).unwrap();
+    let out = render_scalar(scene, camera, integrator, opts).unwrap();
     assert_clean(&out.stats, integrator.method().name());
     out
 }

@@ -64,11 +64,11 @@ impl SegmentIntegrator for LengthAndScalar {
         s
     }
 
-    fn segment(&self, &s_front: &f32, &s_back: &f32, length: f32) -> (Vec3, Vec3) {
+    fn segment(&self, &s_front: &f32, &s_back: &f32, length: f32) -> (glam::Vec3A, glam::Vec3A) {
         let mean = 0.5 * (f64::from(s_front) + f64::from(s_back));
         (
-            Vec3::new(length, (mean * f64::from(length)) as f32, 0.0),
-            Vec3::ONE,
+            glam::Vec3A::new(length, (mean * f64::from(length)) as f32, 0.0),
+            glam::Vec3A::ONE,
         )
     }
 }
@@ -87,8 +87,8 @@ impl SegmentIntegrator for BeerLambert {
         s
     }
 
-    fn segment(&self, &_s_front: &f32, &_s_back: &f32, length: f32) -> (Vec3, Vec3) {
+    fn segment(&self, &_s_front: &f32, &_s_back: &f32, length: f32) -> (glam::Vec3A, glam::Vec3A) {
         let t = (-f64::from(self.tau) * f64::from(length)).exp() as f32;
-        (self.l * (1.0 - t), Vec3::splat(t))
+        ((self.l * (1.0 - t)).into(), glam::Vec3A::splat(t))
     }
 }
