@@ -15,6 +15,7 @@
 mod brute;
 mod build;
 mod flat;
+mod hull;
 mod preset;
 mod slab;
 mod traverse;

@@ -81,8 +81,12 @@ impl RaySlab {
             } else {
                 let t0 = (min[axis] - self.origin_plus_pad[axis]) * self.inv_dir[axis];
                 let t1 = (max[axis] - self.origin_minus_pad[axis]) * self.inv_dir[axis];
-                near = near.max(t0.min(t1));
-                far = far.min(t0.max(t1));
+                // Plain comparisons (one instruction each, unlike f32::min /
+                // max): t0 and t1 are finite (finite inverse, finite box and
+                // origin), and a NaN query range fails every comparison.
+                let (lo, hi) = if t0 < t1 { (t0, t1) } else { (t1, t0) };
+                near = if lo > near { lo } else { near };
+                far = if hi < far { hi } else { far };
             }
         }
         if near <= far {

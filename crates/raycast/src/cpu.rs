@@ -10,7 +10,7 @@ use tetray_integrate::{KernelVisitor, ScalarIntegrator, SegmentKernel, Typed};
 use crate::camera::{Camera, CameraError, PixelRays};
 use crate::image::{Image, ImageError};
 use crate::scene::Scene;
-use crate::walk::{trace, RayCounters, SegmentIntegrator, WalkLimits};
+use crate::walk::{RayCounters, SegmentIntegrator, WalkLimits, Walker};
 
 /// Tile edge in pixels: neighbouring rays in both directions walk the same
 /// tetrahedra, so a square tile keeps them in cache.
@@ -236,7 +236,25 @@ struct Frame<'a, I: ?Sized> {
     height: usize,
 }
 
+/// Rays each worker keeps in flight (see [`Walker`]).
+const IN_FLIGHT: usize = 4;
+
 impl<I: SegmentIntegrator + ?Sized> Frame<'_, I> {
+    /// Starts `walker` on the ray of pixel `(x, y)`.
+    fn start(&self, walker: &mut Walker<I::Sample>, x: usize, y: usize) {
+        let ray = self.rays.ray(x as u32, y as u32);
+        // A ray whose origin may be inside the mesh walks from the first
+        // entry of its whole line (behind the origin too) so it starts in
+        // the cell holding the origin.
+        let inside = if self.orthographic {
+            let (lo, hi) = self.bounds;
+            ray.origin.cmpge(lo).all() && ray.origin.cmple(hi).all()
+        } else {
+            self.eye_inside
+        };
+        walker.start(ray, if inside { f32::NEG_INFINITY } else { 0.0 });
+    }
+
     fn run(&self, pixels: &mut [[f32; 4]]) -> RenderStats {
         pixels
             .par_chunks_mut(self.width * TILE)
@@ -245,40 +263,46 @@ impl<I: SegmentIntegrator + ?Sized> Frame<'_, I> {
             .reduce(RenderStats::default, RenderStats::merge)
     }
 
-    /// Rows `y0..` of the image (`rows` holds whole rows), tile by tile.
+    /// Rows `y0..` of the image (`rows` holds whole rows), tile by tile,
+    /// [`IN_FLIGHT`] rays at a time advanced in turn.
     fn band(&self, y0: usize, rows: &mut [[f32; 4]]) -> RenderStats {
         let mut stats = RenderStats::default();
-        let mut skip = Vec::new();
         let band_rows = rows.len() / self.width;
-        for x0 in (0..self.width).step_by(TILE) {
-            for dy in 0..band_rows {
-                for x in x0..(x0 + TILE).min(self.width) {
-                    let y = y0 + dy;
-                    let ray = self.rays.ray(x as u32, y as u32);
-                    // A ray whose origin may be inside the mesh walks from
-                    // the first entry of its whole line (behind the origin
-                    // too) so it starts in the cell holding the origin.
-                    let inside = if self.orthographic {
-                        let (lo, hi) = self.bounds;
-                        ray.origin.cmpge(lo).all() && ray.origin.cmple(hi).all()
-                    } else {
-                        self.eye_inside
-                    };
-                    let t_start = if inside { f32::NEG_INFINITY } else { 0.0 };
-                    let mut counters = RayCounters::default();
-                    let light = trace(
-                        self.scene,
-                        &ray,
-                        t_start,
-                        self.integrator,
-                        self.limits,
-                        &mut skip,
-                        &mut counters,
-                    );
-                    stats.add(&counters);
-                    let alpha = 1.0 - light.transmittance.element_sum() / 3.0;
-                    let c = light.color;
-                    rows[dy * self.width + x] = [c.x, c.y, c.z, alpha];
+        // Pixels of the band in tile order.
+        let mut pixels = (0..self.width).step_by(TILE).flat_map(|x0| {
+            (0..band_rows)
+                .flat_map(move |dy| (x0..(x0 + TILE).min(self.width)).map(move |x| (x, dy)))
+        });
+        let mut slots: [(Walker<I::Sample>, usize); IN_FLIGHT] =
+            std::array::from_fn(|_| (Walker::new(), usize::MAX));
+        let mut active = 0;
+        for slot in &mut slots {
+            if let Some((x, dy)) = pixels.next() {
+                self.start(&mut slot.0, x, y0 + dy);
+                slot.1 = dy * self.width + x;
+                active += 1;
+            }
+        }
+        while active > 0 {
+            for (walker, index) in &mut slots {
+                if walker.advance(self.scene, self.integrator, self.limits) || *index == usize::MAX
+                {
+                    continue;
+                }
+                stats.add(&walker.counters);
+                let light = walker.light;
+                let alpha = 1.0 - light.transmittance.element_sum() / 3.0;
+                let c = light.color;
+                rows[*index] = [c.x, c.y, c.z, alpha];
+                match pixels.next() {
+                    Some((x, dy)) => {
+                        self.start(walker, x, y0 + dy);
+                        *index = dy * self.width + x;
+                    }
+                    None => {
+                        *index = usize::MAX;
+                        active -= 1;
+                    }
                 }
             }
         }

@@ -59,9 +59,14 @@ pub(crate) struct WalkTet {
     /// Point indices.
     pub verts: [u32; 4],
     /// Across local face `f`: `(neighbour << 2) | its local face index of
-    /// the shared face`, or [`NO_NEIGHBOR`].
+    /// the shared face`; on the boundary [`NO_NEIGHBOR`], or [`FINAL_EXIT`]
+    /// where no ray leaving through the face can meet the mesh again.
     pub next: [u32; 4],
 }
+
+/// `WalkTet::next` of a boundary face on the mesh's convex hull: a ray
+/// leaving through it is done (`BoundaryBvh::final_exit_faces`).
+pub(crate) const FINAL_EXIT: u32 = NO_NEIGHBOR - 1;
 
 /// A mesh ready to be ray cast with one active scalar field.
 pub struct Scene {
@@ -116,9 +121,14 @@ impl Scene {
                 });
             }
         }
-        let walk = walk_tets(&mesh, &topology)?;
+        let mut walk = walk_tets(&mesh, &topology)?;
         check_boundary_faces(&mesh, &topology)?;
         let bvh = BoundaryBvh::build(&mesh, &topology, preset)?;
+        for (face, is_final) in topology.boundary_faces.iter().zip(bvh.final_exit_faces()) {
+            if is_final {
+                walk[face.tet as usize].next[usize::from(face.local_face)] = FINAL_EXIT;
+            }
+        }
         let points = mesh
             .points
             .iter()

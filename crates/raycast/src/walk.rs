@@ -5,9 +5,9 @@
 
 use glam::{Vec3, Vec3A};
 use tetray_boundary_bvh::watertight::{crossing_barycentric, edge_sign, RayFrame, RayPoint};
-use tetray_mesh::{FACE_VERTICES, NO_NEIGHBOR};
+use tetray_mesh::FACE_VERTICES;
 
-use crate::scene::Scene;
+use crate::scene::{Scene, FINAL_EXIT};
 
 /// The light of one ray segment, front (nearer the eye) to back.
 ///
@@ -60,6 +60,13 @@ pub(crate) struct RayCounters {
 pub(crate) struct RayLight {
     pub color: Vec3A,
     pub transmittance: Vec3A,
+}
+
+impl RayLight {
+    const CLEAR: RayLight = RayLight {
+        color: Vec3A::ZERO,
+        transmittance: Vec3A::ONE,
+    };
 }
 
 /// For apex `a` (the vertex opposite the entry face): its three other
@@ -152,6 +159,13 @@ struct Cell {
 }
 
 impl Cell {
+    const EMPTY: Cell = Cell {
+        x: [0.0; 4],
+        y: [0.0; 4],
+        z: [0.0; 4],
+        s: [0.0; 4],
+    };
+
     #[inline(always)]
     fn load(scene: &Scene, ray: &RayFrame, verts: [u32; 4]) -> Cell {
         let q = verts.map(|v| scene.points[v as usize]);
@@ -241,96 +255,186 @@ impl Cell {
     }
 }
 
-/// Casts one ray from distance `t_start` on (`-inf` when its origin may lie
-/// inside the mesh: the walk then starts at the line's first entry and
-/// integrates only from distance 0). `skip` is scratch space.
-pub(crate) fn trace<I: SegmentIntegrator + ?Sized>(
-    scene: &Scene,
-    ray: &RayFrame,
-    t_start: f32,
-    integrator: &I,
-    limits: WalkLimits,
-    skip: &mut Vec<u32>,
-    counters: &mut RayCounters,
-) -> RayLight {
-    let mut light = RayLight {
-        color: Vec3A::ZERO,
-        transmittance: Vec3A::ONE,
-    };
-    // Distance reached so far; never decreases.
-    let mut t_cursor = t_start;
-    // Boundary faces entered at distance `skip_t` with no segment of
-    // positive length since: a re-entry query must not return them again
-    // (a ray grazing a pinch point would otherwise loop).
-    skip.clear();
-    let mut skip_t = f32::NAN;
-    'entries: while let Some(hit) = scene.bvh.first_entry(ray, t_cursor, f32::INFINITY, skip) {
-        counters.entries += 1;
-        counters.hit = true;
-        if hit.t != skip_t {
-            skip.clear();
-            skip_t = hit.t;
-        }
-        skip.push(hit.face);
-        let Some(bf) = scene.topology.boundary_faces.get(hit.face as usize) else {
-            counters.walk_failure = true;
-            break;
-        };
-        let mut tet = bf.tet as usize;
-        let mut f_in = usize::from(bf.local_face);
-        let mut cell = Cell::load(scene, ray, scene.walk[tet].verts);
-        let mut t_in = hit.t.max(t_cursor);
-        let mut s_in = cell.crossing(f_in).1;
-        let mut sample_in = integrator.sample(s_in);
-        loop {
-            counters.steps += 1;
-            if counters.steps > limits.max_steps {
-                counters.step_bound_hit = true;
-                break 'entries;
-            }
-            let Some((f_out, t_exit, s_out)) = cell.exit(f_in) else {
-                // Only a degenerate (flat) tetrahedron has no exit face.
-                counters.walk_failure = true;
-                break 'entries;
-            };
-            let t_out = t_exit.max(t_in);
-            let sample_out = integrator.sample_near(s_out, &sample_in);
-            if t_out > t_in {
-                skip.clear();
-                skip_t = f32::NAN;
-                if t_out > 0.0 {
-                    // Clip at the ray origin; the scalar is linear along the
-                    // segment, so interpolating it there is exact.
-                    let front = if t_in < 0.0 {
-                        integrator.sample(s_in + (s_out - s_in) * (-t_in / (t_out - t_in)))
-                    } else {
-                        sample_in
-                    };
-                    let length = t_out - t_in.max(0.0);
-                    let (emitted, transmittance) = integrator.segment(&front, &sample_out, length);
-                    light.color += light.transmittance * emitted;
-                    light.transmittance *= transmittance;
-                    counters.segments += 1;
-                    // 1 - mean(T) >= threshold, without a division.
-                    if light.transmittance.element_sum() <= limits.stop_below_sum {
-                        break 'entries;
-                    }
-                }
-            }
-            t_in = t_out;
-            s_in = s_out;
-            sample_in = sample_out;
-            let next = scene.walk[tet].next[f_out];
-            if next == NO_NEIGHBOR {
-                t_cursor = t_out;
-                continue 'entries;
-            }
-            tet = (next >> 2) as usize;
-            f_in = (next & 3) as usize;
-            cell = Cell::load(scene, ray, scene.walk[tet].verts);
+/// Where a [`Walker`] is.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Phase {
+    /// Between entries: the next step asks the BVH where the ray enters.
+    Entering,
+    /// Inside the mesh, in `Walker::cell`.
+    Walking,
+    Done,
+}
+
+/// One ray in flight, advanced one tetrahedron at a time, so that a thread
+/// can keep several independent walks going and overlap their memory
+/// latencies (each step is a chain of dependent loads: neighbour index,
+/// vertex indices, vertex positions).
+pub(crate) struct Walker<S> {
+    ray: RayFrame,
+    phase: Phase,
+    pub light: RayLight,
+    pub counters: RayCounters,
+    /// Distance reached so far; never decreases.
+    t_cursor: f32,
+    /// Boundary faces entered at distance `skip_t` with no segment of
+    /// positive length since: a re-entry query must not return them again
+    /// (a ray grazing a pinch point would otherwise loop).
+    skip: Vec<u32>,
+    skip_t: f32,
+    tet: usize,
+    f_in: usize,
+    cell: Cell,
+    t_in: f32,
+    s_in: f32,
+    sample_in: Option<S>,
+}
+
+impl<S: Copy> Walker<S> {
+    pub fn new() -> Self {
+        Walker {
+            ray: RayFrame::new(Vec3::ZERO, Vec3::Z),
+            phase: Phase::Done,
+            light: RayLight::CLEAR,
+            counters: RayCounters::default(),
+            t_cursor: 0.0,
+            skip: Vec::new(),
+            skip_t: f32::NAN,
+            tet: 0,
+            f_in: 0,
+            cell: Cell::EMPTY,
+            t_in: 0.0,
+            s_in: 0.0,
+            sample_in: None,
         }
     }
-    light
+
+    /// Starts a ray from distance `t_start` on (`-inf` when its origin may
+    /// lie inside the mesh: the walk then starts at the line's first entry
+    /// and integrates only from distance 0).
+    pub fn start(&mut self, ray: RayFrame, t_start: f32) {
+        self.ray = ray;
+        self.phase = Phase::Entering;
+        self.light = RayLight::CLEAR;
+        self.counters = RayCounters::default();
+        self.t_cursor = t_start;
+        self.skip.clear();
+        self.skip_t = f32::NAN;
+    }
+
+    /// One BVH query or one tetrahedron; returns whether the ray goes on.
+    #[inline(always)]
+    pub fn advance<I: SegmentIntegrator<Sample = S> + ?Sized>(
+        &mut self,
+        scene: &Scene,
+        integrator: &I,
+        limits: WalkLimits,
+    ) -> bool {
+        match self.phase {
+            Phase::Walking => self.step(scene, integrator, limits),
+            Phase::Entering => self.enter(scene, integrator),
+            Phase::Done => {}
+        }
+        self.phase != Phase::Done
+    }
+
+    fn enter<I: SegmentIntegrator<Sample = S> + ?Sized>(&mut self, scene: &Scene, integrator: &I) {
+        let Some(hit) = scene
+            .bvh
+            .first_entry(&self.ray, self.t_cursor, f32::INFINITY, &self.skip)
+        else {
+            self.phase = Phase::Done;
+            return;
+        };
+        self.counters.entries += 1;
+        self.counters.hit = true;
+        if hit.t != self.skip_t {
+            self.skip.clear();
+            self.skip_t = hit.t;
+        }
+        self.skip.push(hit.face);
+        let Some(bf) = scene.topology.boundary_faces.get(hit.face as usize) else {
+            self.counters.walk_failure = true;
+            self.phase = Phase::Done;
+            return;
+        };
+        self.tet = bf.tet as usize;
+        self.f_in = usize::from(bf.local_face);
+        self.cell = Cell::load(scene, &self.ray, scene.walk[self.tet].verts);
+        self.t_in = hit.t.max(self.t_cursor);
+        self.s_in = self.cell.crossing(self.f_in).1;
+        self.sample_in = Some(integrator.sample(self.s_in));
+        self.phase = Phase::Walking;
+    }
+
+    #[inline(always)]
+    fn step<I: SegmentIntegrator<Sample = S> + ?Sized>(
+        &mut self,
+        scene: &Scene,
+        integrator: &I,
+        limits: WalkLimits,
+    ) {
+        let counters = &mut self.counters;
+        counters.steps += 1;
+        if counters.steps > limits.max_steps {
+            counters.step_bound_hit = true;
+            self.phase = Phase::Done;
+            return;
+        }
+        let Some((f_out, t_exit, s_out)) = self.cell.exit(self.f_in) else {
+            // Only a degenerate (flat) tetrahedron has no exit face.
+            counters.walk_failure = true;
+            self.phase = Phase::Done;
+            return;
+        };
+        let (t_in, s_in) = (self.t_in, self.s_in);
+        let Some(sample_in) = self.sample_in else {
+            unreachable!("set on entry");
+        };
+        let t_out = t_exit.max(t_in);
+        let sample_out = integrator.sample_near(s_out, &sample_in);
+        if t_out > t_in {
+            self.skip.clear();
+            self.skip_t = f32::NAN;
+            if t_out > 0.0 {
+                // Clip at the ray origin; the scalar is linear along the
+                // segment, so interpolating it there is exact.
+                let front = if t_in < 0.0 {
+                    integrator.sample(s_in + (s_out - s_in) * (-t_in / (t_out - t_in)))
+                } else {
+                    sample_in
+                };
+                let length = t_out - t_in.max(0.0);
+                let (emitted, transmittance) = integrator.segment(&front, &sample_out, length);
+                let light = &mut self.light;
+                light.color += light.transmittance * emitted;
+                light.transmittance *= transmittance;
+                counters.segments += 1;
+                // 1 - mean(T) >= threshold, without a division.
+                if light.transmittance.element_sum() <= limits.stop_below_sum {
+                    self.phase = Phase::Done;
+                    return;
+                }
+            }
+        }
+        self.t_in = t_out;
+        self.s_in = s_out;
+        self.sample_in = Some(sample_out);
+        let next = scene.walk[self.tet].next[f_out];
+        if next >= FINAL_EXIT {
+            // Left through the convex hull: nothing more to meet; otherwise
+            // ask the BVH where the ray comes back.
+            self.phase = if next == FINAL_EXIT {
+                Phase::Done
+            } else {
+                Phase::Entering
+            };
+            self.t_cursor = t_out;
+            return;
+        }
+        self.tet = (next >> 2) as usize;
+        self.f_in = (next & 3) as usize;
+        self.cell = Cell::load(scene, &self.ray, scene.walk[self.tet].verts);
+    }
 }
 
 /// An integrator with its method fixed in its type (see
