@@ -3,65 +3,55 @@
 //! work inlined (no per-segment dispatch, no material passed through
 //! memory). [`crate::ScalarIntegrator::dispatch`] hands a renderer the
 //! kernel of its method.
+//!
+//! Each kernel also fixes how a scalar is classified ([`SegmentKernel::Sample`]):
+//! grey knots as one `Vec4` ([`crate::grey`]), per-channel knots as a full
+//! [`Material`], the table and sampling methods as the bare scalar.
 
-use glam::Vec3A;
+use glam::{Vec3A, Vec4};
 
 use crate::average::{average_opacity_weights, average_weights};
 use crate::exact::exact_weights;
+use crate::grey::{GreyKnots, GreySample};
 use crate::knots::{KnotSample, Material, TfKnots};
 use crate::opacity::{lin_avg_opacity_weights, lin_opacity_weights};
 use crate::ppi::ppi_weights;
 use crate::preintegrated::PreintegrationTable;
 use crate::psi::PsiTable;
 use crate::reference;
-use crate::segment::{grey_light, light_from_weights, SegmentLight};
+use crate::segment::{light_from_weights, SegmentLight, Weights};
 
-/// One piece with linear material: the light between `front` and `back`
-/// materials over `length` world units.
-pub trait PieceKernel: Sync {
-    fn piece(&self, front: &Material, back: &Material, length: f32) -> SegmentLight;
+/// Per-channel weights of eq. 5.5 from the end values of the method's
+/// quantity (`tau D` or opacity) at the back and front.
+pub trait WeightKernel: Sync {
+    fn weights(&self, back: f32, front: f32, length: f32) -> Weights;
+    /// Whether the quantity is the attenuation (multiplied by the length
+    /// before `weights`) or the opacity.
+    const TAU: bool;
 }
 
-/// Partial pre-integration, eq. 5.5 with the Psi table. `GREY`: every
-/// knot's attenuation is the same in all channels (transfer functions with
-/// one opacity), so one weight computation serves the three channels.
+/// Partial pre-integration, eq. 5.5 with the Psi table.
 #[derive(Clone, Copy)]
-pub struct Ppi<'a, const GREY: bool> {
+pub struct Ppi<'a> {
     pub table: &'a PsiTable,
 }
 
 /// Williams-Max-Stein closed form, eq. 3.28 (f64 inside).
 #[derive(Clone, Copy)]
-pub struct Exact<const GREY: bool>;
+pub struct Exact;
 
 /// Averaged luminance and attenuation, eq. 3.16.
 #[derive(Clone, Copy)]
-pub struct Average<const GREY: bool>;
+pub struct Average;
 
-/// The light of a piece from per-channel weights, computed once when the
-/// knots are grey.
-#[inline(always)]
-fn tau_light<const GREY: bool>(
-    front: &Material,
-    back: &Material,
-    d: f32,
-    weights: impl Fn(f32, f32) -> crate::segment::Weights,
-) -> SegmentLight {
-    if GREY {
-        grey_light(back.lum, front.lum, back.tau * d, front.tau * d, weights)
-    } else {
-        light_from_weights(back.lum, front.lum, back.tau * d, front.tau * d, weights)
-    }
-}
-
-/// Opacity methods (section 5.3) see lengths in unit distances.
+/// The opacity-interpolating approximations of section 5.3; lengths in unit
+/// distances.
 #[derive(Clone, Copy)]
 pub struct OpacityKernel {
     pub inv_unit_distance: f32,
     pub method: OpacityMethod,
 }
 
-/// The opacity-interpolating approximations.
 #[derive(Clone, Copy, PartialEq, Eq)]
 pub enum OpacityMethod {
     Average,
@@ -69,50 +59,51 @@ pub enum OpacityMethod {
     Linear,
 }
 
-/// f64 quadrature of either model.
+impl WeightKernel for Ppi<'_> {
+    const TAU: bool = true;
+    #[inline(always)]
+    fn weights(&self, a: f32, b: f32, _length: f32) -> Weights {
+        ppi_weights(self.table, a, b)
+    }
+}
+
+impl WeightKernel for Exact {
+    const TAU: bool = true;
+    #[inline(always)]
+    fn weights(&self, a: f32, b: f32, _length: f32) -> Weights {
+        exact_weights(a, b)
+    }
+}
+
+impl WeightKernel for Average {
+    const TAU: bool = true;
+    #[inline(always)]
+    fn weights(&self, a: f32, b: f32, _length: f32) -> Weights {
+        average_weights(a, b)
+    }
+}
+
+impl WeightKernel for OpacityKernel {
+    const TAU: bool = false;
+    #[inline(always)]
+    fn weights(&self, alpha_back: f32, alpha_front: f32, length: f32) -> Weights {
+        let units = length * self.inv_unit_distance;
+        match self.method {
+            OpacityMethod::Average => average_opacity_weights(alpha_back, alpha_front, units),
+            OpacityMethod::LinAverage => lin_avg_opacity_weights(alpha_back, alpha_front, units),
+            OpacityMethod::Linear => lin_opacity_weights(alpha_back, alpha_front, units),
+        }
+    }
+}
+
+/// f64 quadrature of either model, per channel.
 #[derive(Clone, Copy)]
 pub struct Reference {
     pub inv_unit_distance: f32,
     pub opacity_model: bool,
 }
 
-impl<const GREY: bool> PieceKernel for Ppi<'_, GREY> {
-    #[inline(always)]
-    fn piece(&self, front: &Material, back: &Material, d: f32) -> SegmentLight {
-        tau_light::<GREY>(front, back, d, |a, b| ppi_weights(self.table, a, b))
-    }
-}
-
-impl<const GREY: bool> PieceKernel for Exact<GREY> {
-    #[inline(always)]
-    fn piece(&self, front: &Material, back: &Material, d: f32) -> SegmentLight {
-        tau_light::<GREY>(front, back, d, exact_weights)
-    }
-}
-
-impl<const GREY: bool> PieceKernel for Average<GREY> {
-    #[inline(always)]
-    fn piece(&self, front: &Material, back: &Material, d: f32) -> SegmentLight {
-        tau_light::<GREY>(front, back, d, average_weights)
-    }
-}
-
-impl PieceKernel for OpacityKernel {
-    #[inline(always)]
-    fn piece(&self, front: &Material, back: &Material, d: f32) -> SegmentLight {
-        let units = d * self.inv_unit_distance;
-        let weights = match self.method {
-            OpacityMethod::Average => average_opacity_weights,
-            OpacityMethod::LinAverage => lin_avg_opacity_weights,
-            OpacityMethod::Linear => lin_opacity_weights,
-        };
-        light_from_weights(back.lum, front.lum, back.alpha, front.alpha, |ab, af| {
-            weights(ab, af, units)
-        })
-    }
-}
-
-impl PieceKernel for Reference {
+impl Reference {
     fn piece(&self, front: &Material, back: &Material, d: f32) -> SegmentLight {
         let mut light = SegmentLight::CLEAR;
         let wide = |v: Vec3A, c: usize| f64::from(v[c]);
@@ -122,13 +113,8 @@ impl PieceKernel for Reference {
                 let units = f64::from(d) * f64::from(self.inv_unit_distance);
                 reference::opacity_segment(lb, lf, wide(back.alpha, c), wide(front.alpha, c), units)
             } else {
-                reference::attenuation_segment(
-                    lb,
-                    lf,
-                    wide(back.tau, c),
-                    wide(front.tau, c),
-                    f64::from(d),
-                )
+                let (tb, tf) = (wide(back.tau, c), wide(front.tau, c));
+                reference::attenuation_segment(lb, lf, tb, tf, f64::from(d))
             };
             light.emitted[c] = r.emitted as f32;
             light.transmittance[c] = r.transmittance as f32;
@@ -139,24 +125,124 @@ impl PieceKernel for Reference {
 
 /// A whole segment between two classified scalars.
 pub trait SegmentKernel: Sync {
+    /// What the kernel keeps of a classified scalar.
+    type Sample: Copy;
+    fn sample(&self, knots: &TfKnots, s: f32) -> Self::Sample;
+    fn sample_near(&self, knots: &TfKnots, s: f32, near: &Self::Sample) -> Self::Sample;
     fn segment(
         &self,
         knots: &TfKnots,
-        front: &KnotSample,
-        back: &KnotSample,
+        front: &Self::Sample,
+        back: &Self::Sample,
         length: f32,
     ) -> SegmentLight;
 }
 
-/// A piece kernel applied to the pieces of a segment cut at the knots
-/// (section 4.3), or to the whole segment when `split` is off.
+/// A weight kernel on grey knots: pieces cut at the knots (section 4.3)
+/// unless `split` is off, one weight computation per piece.
 #[derive(Clone, Copy)]
-pub struct Split<P> {
-    pub kernel: P,
+pub struct Grey<'a, W> {
+    pub knots: &'a GreyKnots,
+    pub kernel: W,
     pub split: bool,
 }
 
-impl<P: PieceKernel> SegmentKernel for Split<P> {
+impl<W: WeightKernel> Grey<'_, W> {
+    #[inline(always)]
+    fn piece(&self, front: Vec4, back: Vec4, d: f32) -> SegmentLight {
+        let scale = if W::TAU { d } else { 1.0 };
+        let w = self.kernel.weights(back.w * scale, front.w * scale, d);
+        w.light(Vec3A::from_vec4(back), Vec3A::from_vec4(front))
+    }
+}
+
+impl<W: WeightKernel> SegmentKernel for Grey<'_, W> {
+    type Sample = GreySample;
+
+    #[inline(always)]
+    fn sample(&self, _knots: &TfKnots, s: f32) -> GreySample {
+        self.knots.sample(s)
+    }
+
+    #[inline(always)]
+    fn sample_near(&self, _knots: &TfKnots, s: f32, near: &GreySample) -> GreySample {
+        self.knots.sample_near(s, near)
+    }
+
+    #[inline(always)]
+    fn segment(
+        &self,
+        _knots: &TfKnots,
+        front: &GreySample,
+        back: &GreySample,
+        length: f32,
+    ) -> SegmentLight {
+        // One interval (the common case) or no splitting: a single piece
+        // with the samples' own materials.
+        if front.interval == back.interval || !self.split {
+            return self.piece(front.material, back.material, length);
+        }
+        let mut light = SegmentLight::CLEAR;
+        self.knots.split(front, back, length, |f, b, d| {
+            light = light.then(self.piece(f, b, d));
+        });
+        light
+    }
+}
+
+/// A weight kernel on per-channel knots (attenuation differing by channel).
+#[derive(Clone, Copy)]
+pub struct Rgb<W> {
+    pub kernel: W,
+    pub split: bool,
+}
+
+impl<W: WeightKernel> Rgb<W> {
+    #[inline(always)]
+    fn piece(&self, front: &Material, back: &Material, d: f32) -> SegmentLight {
+        let (qb, qf) = if W::TAU {
+            (back.tau * d, front.tau * d)
+        } else {
+            (back.alpha, front.alpha)
+        };
+        light_from_weights(back.lum, front.lum, qb, qf, |b, f| {
+            self.kernel.weights(b, f, d)
+        })
+    }
+}
+
+/// Material knots split at the knots: what [`Rgb`] and [`Reference`] share.
+fn split_material(
+    knots: &TfKnots,
+    split: bool,
+    front: &KnotSample,
+    back: &KnotSample,
+    length: f32,
+    piece: impl Fn(&Material, &Material, f32) -> SegmentLight,
+) -> SegmentLight {
+    if front.interval == back.interval || !split {
+        return piece(&front.material, &back.material, length);
+    }
+    let mut light = SegmentLight::CLEAR;
+    knots.split(front.scalar, back.scalar, length, |p| {
+        light = light.then(piece(&p.front, &p.back, p.length));
+    });
+    light
+}
+
+impl<W: WeightKernel> SegmentKernel for Rgb<W> {
+    type Sample = KnotSample;
+
+    #[inline(always)]
+    fn sample(&self, knots: &TfKnots, s: f32) -> KnotSample {
+        knots.sample(s)
+    }
+
+    #[inline(always)]
+    fn sample_near(&self, knots: &TfKnots, s: f32, near: &KnotSample) -> KnotSample {
+        knots.sample_near(s, near)
+    }
+
     #[inline(always)]
     fn segment(
         &self,
@@ -165,16 +251,40 @@ impl<P: PieceKernel> SegmentKernel for Split<P> {
         back: &KnotSample,
         length: f32,
     ) -> SegmentLight {
-        // One interval (the common case) or no splitting: a single piece
-        // with the samples' own materials.
-        if front.interval == back.interval || !self.split {
-            return self.kernel.piece(&front.material, &back.material, length);
-        }
-        let mut light = SegmentLight::CLEAR;
-        knots.split(front.scalar, back.scalar, length, |p| {
-            light = light.then(self.kernel.piece(&p.front, &p.back, p.length));
-        });
-        light
+        split_material(knots, self.split, front, back, length, |f, b, d| {
+            self.piece(f, b, d)
+        })
+    }
+}
+
+/// The f64 reference, cut at the knots like the other methods.
+#[derive(Clone, Copy)]
+pub struct ReferenceSplit {
+    pub reference: Reference,
+    pub split: bool,
+}
+
+impl SegmentKernel for ReferenceSplit {
+    type Sample = KnotSample;
+
+    fn sample(&self, knots: &TfKnots, s: f32) -> KnotSample {
+        knots.sample(s)
+    }
+
+    fn sample_near(&self, knots: &TfKnots, s: f32, near: &KnotSample) -> KnotSample {
+        knots.sample_near(s, near)
+    }
+
+    fn segment(
+        &self,
+        knots: &TfKnots,
+        front: &KnotSample,
+        back: &KnotSample,
+        length: f32,
+    ) -> SegmentLight {
+        split_material(knots, self.split, front, back, length, |f, b, d| {
+            self.reference.piece(f, b, d)
+        })
     }
 }
 
@@ -191,14 +301,17 @@ pub struct Riemann {
 }
 
 impl SegmentKernel for Riemann {
-    fn segment(
-        &self,
-        knots: &TfKnots,
-        front: &KnotSample,
-        back: &KnotSample,
-        length: f32,
-    ) -> SegmentLight {
-        let (s_front, s_back) = (front.scalar, back.scalar);
+    type Sample = f32;
+
+    fn sample(&self, _knots: &TfKnots, s: f32) -> f32 {
+        s
+    }
+
+    fn sample_near(&self, _knots: &TfKnots, s: f32, _near: &f32) -> f32 {
+        s
+    }
+
+    fn segment(&self, knots: &TfKnots, &s_front: &f32, &s_back: &f32, length: f32) -> SegmentLight {
         let steps = ((length / self.step).ceil() as usize).clamp(1, RIEMANN_MAX_SAMPLES);
         let h = length / steps as f32;
         let mut light = SegmentLight::CLEAR;
@@ -222,15 +335,21 @@ pub struct Preintegrated<'a> {
 }
 
 impl SegmentKernel for Preintegrated<'_> {
+    type Sample = f32;
+
     #[inline(always)]
-    fn segment(
-        &self,
-        _knots: &TfKnots,
-        front: &KnotSample,
-        back: &KnotSample,
-        length: f32,
-    ) -> SegmentLight {
-        self.table.lookup(front.scalar, back.scalar, length)
+    fn sample(&self, _knots: &TfKnots, s: f32) -> f32 {
+        s
+    }
+
+    #[inline(always)]
+    fn sample_near(&self, _knots: &TfKnots, s: f32, _near: &f32) -> f32 {
+        s
+    }
+
+    #[inline(always)]
+    fn segment(&self, _knots: &TfKnots, &front: &f32, &back: &f32, length: f32) -> SegmentLight {
+        self.table.lookup(front, back, length)
     }
 }
 
@@ -245,13 +364,13 @@ pub struct Typed<'a, K> {
 
 impl<K: SegmentKernel> Typed<'_, K> {
     #[inline(always)]
-    pub fn sample(&self, s: f32) -> KnotSample {
-        self.knots.sample(s)
+    pub fn sample(&self, s: f32) -> K::Sample {
+        self.kernel.sample(self.knots, s)
     }
 
     #[inline(always)]
-    pub fn sample_near(&self, s: f32, near: &KnotSample) -> KnotSample {
-        self.knots.sample_near(s, near)
+    pub fn sample_near(&self, s: f32, near: &K::Sample) -> K::Sample {
+        self.kernel.sample_near(self.knots, s, near)
     }
 
     /// The light of a segment `length` long between two classified scalars
@@ -260,8 +379,8 @@ impl<K: SegmentKernel> Typed<'_, K> {
     #[inline(always)]
     pub fn integrate_samples(
         &self,
-        front: &KnotSample,
-        back: &KnotSample,
+        front: &K::Sample,
+        back: &K::Sample,
         length: f32,
     ) -> SegmentLight {
         if length.is_nan() || length <= 0.0 {

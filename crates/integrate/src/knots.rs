@@ -239,12 +239,6 @@ impl TfKnots {
         self.scalars.partition_point(|&x| x <= s) as isize - 1
     }
 
-    /// The interval `k` with `x_k < s <= x_(k+1)`.
-    #[inline]
-    fn interval_down(&self, s: f32) -> isize {
-        self.scalars.partition_point(|&x| x < s) as isize - 1
-    }
-
     /// Material at `s` by the linear function of interval `k`.
     #[inline(always)]
     fn in_interval(&self, k: isize, s: f32) -> Material {
@@ -269,64 +263,93 @@ impl TfKnots {
         length: f32,
         mut piece: impl FnMut(&Piece),
     ) -> usize {
-        let last = self.scalars.len() as isize - 1;
-        let span = s_back - s_front;
-        if span == 0.0 || !span.is_finite() {
-            let m = self.at(s_front);
-            piece(&Piece {
-                front: m,
-                back: m,
-                length,
-            });
-            return 1;
-        }
-        let per_scalar = length / span.abs();
-        let increasing = span > 0.0;
-        let mut k = if increasing {
-            self.interval_up(s_front)
-        } else {
-            self.interval_down(s_front)
-        };
-        let mut s = s_front;
-        let mut count = 0;
-        loop {
-            // The end of interval k in the direction of travel.
-            let (bound, next) = if increasing {
-                if k < last {
-                    (self.scalars[(k + 1) as usize], k + 1)
-                } else {
-                    (f32::INFINITY, k)
-                }
-            } else if k >= 0 {
-                (self.scalars[k as usize], k - 1)
-            } else {
-                (f32::NEG_INFINITY, k)
-            };
-            let reached = if increasing {
-                bound >= s_back
-            } else {
-                bound <= s_back
-            };
-            let s_end = if reached { s_back } else { bound };
-            let piece_length = if reached && count == 0 {
-                length
-            } else {
-                (s_end - s).abs() * per_scalar
-            };
-            if piece_length > 0.0 || reached {
+        split_at_knots(
+            &self.scalars,
+            s_front,
+            s_back,
+            length,
+            |k, s| self.in_interval(k, s),
+            |s| self.at(s),
+            |front, back, length| {
                 piece(&Piece {
-                    front: self.in_interval(k, s),
-                    back: self.in_interval(k, s_end),
-                    length: piece_length,
-                });
-                count += 1;
+                    front,
+                    back,
+                    length,
+                })
+            },
+        )
+    }
+}
+
+/// The split of a segment at the knots `scalars`, for any representation
+/// of the material: `eval(k, s)` is the material at `s` by interval `k`'s
+/// linear function (`-1` below the first knot), `at(s)` the material at
+/// `s`. Calls `piece(front, back, length)` front to back and returns the
+/// number of pieces.
+#[inline]
+pub(crate) fn split_at_knots<M>(
+    scalars: &[f32],
+    s_front: f32,
+    s_back: f32,
+    length: f32,
+    eval: impl Fn(isize, f32) -> M,
+    at: impl Fn(f32) -> M,
+    mut piece: impl FnMut(M, M, f32),
+) -> usize
+where
+    M: Copy,
+{
+    let last = scalars.len() as isize - 1;
+    let span = s_back - s_front;
+    if span == 0.0 || !span.is_finite() {
+        let m = at(s_front);
+        piece(m, m, length);
+        return 1;
+    }
+    let per_scalar = length / span.abs();
+    let increasing = span > 0.0;
+    // The interval holding s_front, entered in the direction of travel:
+    // x_k <= s < x_(k+1) going up, x_k < s <= x_(k+1) going down.
+    let mut k = if increasing {
+        scalars.partition_point(|&x| x <= s_front) as isize - 1
+    } else {
+        scalars.partition_point(|&x| x < s_front) as isize - 1
+    };
+    let mut s = s_front;
+    let mut count = 0;
+    loop {
+        // The end of interval k in the direction of travel.
+        let (bound, next) = if increasing {
+            if k < last {
+                (scalars[(k + 1) as usize], k + 1)
+            } else {
+                (f32::INFINITY, k)
             }
-            if reached {
-                return count;
-            }
-            s = s_end;
-            k = next;
+        } else if k >= 0 {
+            (scalars[k as usize], k - 1)
+        } else {
+            (f32::NEG_INFINITY, k)
+        };
+        let reached = if increasing {
+            bound >= s_back
+        } else {
+            bound <= s_back
+        };
+        let s_end = if reached { s_back } else { bound };
+        let piece_length = if reached && count == 0 {
+            length
+        } else {
+            (s_end - s).abs() * per_scalar
+        };
+        if piece_length > 0.0 || reached {
+            piece(eval(k, s), eval(k, s_end), piece_length);
+            count += 1;
         }
+        if reached {
+            return count;
+        }
+        s = s_end;
+        k = next;
     }
 }
 

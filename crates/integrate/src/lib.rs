@@ -27,6 +27,7 @@ pub mod colorspace;
 mod error;
 pub mod exact;
 pub mod fastmath;
+pub mod grey;
 pub mod kernels;
 mod knots;
 mod method;

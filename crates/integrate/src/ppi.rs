@@ -12,7 +12,15 @@ use crate::segment::{light_from_weights, SegmentLight, SegmentParams, Weights};
 #[inline(always)]
 pub fn ppi_weights(table: &PsiTable, tau_d_back: f32, tau_d_front: f32) -> Weights {
     let zeta = exp_f32(-0.5 * (tau_d_back + tau_d_front));
-    let psi = table.lookup(tau_d_back, tau_d_front).max(zeta).min(1.0);
+    let psi = table.lookup(tau_d_back, tau_d_front);
+    // Plain comparisons (NaN stays NaN).
+    let psi = if psi < zeta {
+        zeta
+    } else if psi > 1.0 {
+        1.0
+    } else {
+        psi
+    };
     Weights { zeta, psi }
 }
 

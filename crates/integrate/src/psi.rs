@@ -257,12 +257,20 @@ impl PsiTable {
     #[inline(always)]
     fn bilinear(&self, u_back: f32, u_front: f32) -> f32 {
         let n = self.size;
-        let x = u_back.clamp(0.0, 1.0) * self.last;
-        let y = u_front.clamp(0.0, 1.0) * self.last;
-        // NaN converts to cell 0 and its fraction stays NaN.
-        let i = (x as u32).min(self.last_cell);
-        let j = (y as u32).min(self.last_cell);
-        let (fx, fy) = (x - i as f32, y - j as f32);
+        // Plain comparisons: a NaN coordinate passes through unclamped.
+        let clamp01 = |u: f32| {
+            if u < 0.0 {
+                0.0
+            } else if u > 1.0 {
+                1.0
+            } else {
+                u
+            }
+        };
+        let x = clamp01(u_back) * self.last;
+        let y = clamp01(u_front) * self.last;
+        let (i, fx) = cell(x, self.last_cell);
+        let (j, fy) = cell(y, self.last_cell);
         let base = j as usize * n + i as usize;
         let (Some(near), Some(far)) = (
             self.values.get(base..base + 2),
@@ -274,4 +282,21 @@ impl PsiTable {
         let top = far[0] + (far[1] - far[0]) * fx;
         bottom + (top - bottom) * fy
     }
+}
+
+/// `1.5 * 2^23`: in `[2^23, 2^24)` f32 values are spaced by 1, so adding it
+/// rounds to an integer that the low bits of the sum hold.
+const ROUNDER: f32 = 12_582_912.0;
+
+/// The cell `i <= last_cell` holding table coordinate `x >= 0` and the
+/// position `x - i` in it, without a float-to-int conversion: `x - 0.5`
+/// rounded to the nearest integer is `floor(x)` (or `x - 1` at a tie, when
+/// the position is 1: bilinear interpolation is continuous, so either cell
+/// gives the same value). NaN lands in some cell with a NaN position.
+#[inline(always)]
+fn cell(x: f32, last_cell: u32) -> (u32, f32) {
+    let rounded = (x - 0.5) + ROUNDER;
+    let i = rounded.to_bits().wrapping_sub(ROUNDER.to_bits());
+    let i = if i < last_cell { i } else { last_cell };
+    (i, x - i as f32)
 }

@@ -7,11 +7,12 @@ use std::time::{Duration, Instant};
 
 use glam::Vec3;
 
+use crate::grey::{GreyKnots, Lane};
 use crate::kernels::{
-    Average, Exact, KernelVisitor, OpacityKernel, OpacityMethod, Ppi, Preintegrated, Reference,
-    Riemann, SegmentKernel, Split, Typed,
+    Average, Exact, Grey, KernelVisitor, OpacityKernel, OpacityMethod, Ppi, Preintegrated,
+    Reference, ReferenceSplit, Rgb, Riemann, SegmentKernel, Typed,
 };
-use crate::knots::{KnotSample, Material, OpacityMode, TfKnots};
+use crate::knots::{Material, OpacityMode, TfKnots};
 use crate::method::Method;
 use crate::preintegrated::PreintegrationTable;
 use crate::psi::{GammaSpacing, PsiTable, PSI_TABLE_DEFAULT};
@@ -63,6 +64,10 @@ impl Default for IntegratorOptions {
 pub struct ScalarIntegrator {
     method: Method,
     knots: TfKnots,
+    /// The knots in 4-lane form for the attenuation and the opacity
+    /// methods, when they are grey.
+    grey_tau: Option<GreyKnots>,
+    grey_alpha: Option<GreyKnots>,
     unit_distance: f32,
     split: bool,
     riemann_step: f32,
@@ -118,6 +123,8 @@ impl ScalarIntegrator {
         };
         Ok(ScalarIntegrator {
             method,
+            grey_tau: GreyKnots::new(&knots, Lane::Tau),
+            grey_alpha: GreyKnots::new(&knots, Lane::Alpha),
             knots,
             unit_distance: options.unit_distance,
             split: options.split_at_knots,
@@ -177,46 +184,25 @@ impl ScalarIntegrator {
     }
 
     /// The light of a segment `length` long whose scalar goes linearly from
-    /// `s_front` (the end nearer the eye) to `s_back`.
+    /// `s_front` (the end nearer the eye) to `s_back`. Dispatches on the
+    /// method per call: inner loops should use [`ScalarIntegrator::dispatch`].
     pub fn integrate(&self, s_front: f32, s_back: f32, length: f32) -> SegmentLight {
-        self.integrate_samples(&self.sample(s_front), &self.sample(s_back), length)
-    }
-
-    /// A scalar classified for [`ScalarIntegrator::integrate_samples`].
-    #[inline]
-    pub fn sample(&self, s: f32) -> KnotSample {
-        self.knots.sample(s)
-    }
-
-    /// [`ScalarIntegrator::sample`] of a scalar close to `near`'s.
-    #[inline]
-    pub fn sample_near(&self, s: f32, near: &KnotSample) -> KnotSample {
-        self.knots.sample_near(s, near)
-    }
-
-    /// [`ScalarIntegrator::integrate`] with both end scalars classified.
-    /// Dispatches on the method per call: inner loops should use
-    /// [`ScalarIntegrator::dispatch`] instead.
-    pub fn integrate_samples(
-        &self,
-        front: &KnotSample,
-        back: &KnotSample,
-        length: f32,
-    ) -> SegmentLight {
-        struct One<'s> {
-            front: &'s KnotSample,
-            back: &'s KnotSample,
+        struct One {
+            s_front: f32,
+            s_back: f32,
             length: f32,
         }
-        impl KernelVisitor for One<'_> {
+        impl KernelVisitor for One {
             type Output = SegmentLight;
             fn visit<K: SegmentKernel>(self, integrator: Typed<'_, K>) -> SegmentLight {
-                integrator.integrate_samples(self.front, self.back, self.length)
+                let front = integrator.sample(self.s_front);
+                let back = integrator.sample(self.s_back);
+                integrator.integrate_samples(&front, &back, self.length)
             }
         }
         self.dispatch(One {
-            front,
-            back,
+            s_front,
+            s_back,
             length,
         })
     }
@@ -226,83 +212,51 @@ impl ScalarIntegrator {
     pub fn dispatch<V: KernelVisitor>(&self, visitor: V) -> V::Output {
         let knots = &self.knots;
         let split = self.split;
-        let grey = knots.is_grey();
         let inv_unit_distance = 1.0 / self.unit_distance;
-        let opacity = |method| Split {
-            kernel: OpacityKernel {
-                inv_unit_distance,
-                method,
-            },
-            split,
+        let opacity = |method| OpacityKernel {
+            inv_unit_distance,
+            method,
         };
-        let reference = |opacity_model| Split {
-            kernel: Reference {
+        let reference = |opacity_model| ReferenceSplit {
+            reference: Reference {
                 inv_unit_distance,
                 opacity_model,
             },
             split,
         };
+        macro_rules! weights {
+            ($grey:expr, $kernel:expr) => {
+                match $grey {
+                    Some(grey) => visitor.visit(Typed {
+                        knots,
+                        kernel: Grey {
+                            knots: grey,
+                            kernel: $kernel,
+                            split,
+                        },
+                    }),
+                    None => visitor.visit(Typed {
+                        knots,
+                        kernel: Rgb {
+                            kernel: $kernel,
+                            split,
+                        },
+                    }),
+                }
+            };
+        }
+        let tau = self.grey_tau.as_ref();
+        let alpha = self.grey_alpha.as_ref();
         match self.method {
             Method::Ppi => {
                 let table = self.psi.as_deref().expect("built with the integrator");
-                if grey {
-                    visitor.visit(Typed {
-                        knots,
-                        kernel: Split {
-                            kernel: Ppi::<true> { table },
-                            split,
-                        },
-                    })
-                } else {
-                    visitor.visit(Typed {
-                        knots,
-                        kernel: Split {
-                            kernel: Ppi::<false> { table },
-                            split,
-                        },
-                    })
-                }
+                weights!(tau, Ppi { table })
             }
-            Method::Exact if grey => visitor.visit(Typed {
-                knots,
-                kernel: Split {
-                    kernel: Exact::<true>,
-                    split,
-                },
-            }),
-            Method::Exact => visitor.visit(Typed {
-                knots,
-                kernel: Split {
-                    kernel: Exact::<false>,
-                    split,
-                },
-            }),
-            Method::Average if grey => visitor.visit(Typed {
-                knots,
-                kernel: Split {
-                    kernel: Average::<true>,
-                    split,
-                },
-            }),
-            Method::Average => visitor.visit(Typed {
-                knots,
-                kernel: Split {
-                    kernel: Average::<false>,
-                    split,
-                },
-            }),
-            Method::AverageOpacity => visitor.visit(Typed {
-                knots,
-                kernel: opacity(OpacityMethod::Average),
-            }),
-            Method::LinAvgOpacity => visitor.visit(Typed {
-                knots,
-                kernel: opacity(OpacityMethod::LinAverage),
-            }),
-            Method::LinOpacity => visitor.visit(Typed {
-                knots,
-                kernel: opacity(OpacityMethod::Linear),
-            }),
+            Method::Exact => weights!(tau, Exact),
+            Method::Average => weights!(tau, Average),
+            Method::AverageOpacity => weights!(alpha, opacity(OpacityMethod::Average)),
+            Method::LinAvgOpacity => weights!(alpha, opacity(OpacityMethod::LinAverage)),
+            Method::LinOpacity => weights!(alpha, opacity(OpacityMethod::Linear)),
             Method::Reference => visitor.visit(Typed {
                 knots,
                 kernel: reference(false),

@@ -122,18 +122,6 @@ pub(crate) fn is_grey(v: Vec3A) -> bool {
     v.x == v.y && v.y == v.z
 }
 
-/// The weights of a segment whose attenuation is known to be grey: once.
-#[inline(always)]
-pub(crate) fn grey_light(
-    lum_back: Vec3A,
-    lum_front: Vec3A,
-    back: Vec3A,
-    front: Vec3A,
-    weights: impl Fn(f32, f32) -> Weights,
-) -> SegmentLight {
-    weights(back.x, front.x).light(lum_back, lum_front)
-}
-
 /// The weights of a segment, per channel or once when both ends are grey.
 #[inline(always)]
 pub(crate) fn light_from_weights(

@@ -441,7 +441,7 @@ impl<S: Copy> Walker<S> {
 /// `ScalarIntegrator::dispatch`): the walk's inner loop is compiled per
 /// method.
 impl<K: tetray_integrate::SegmentKernel> SegmentIntegrator for tetray_integrate::Typed<'_, K> {
-    type Sample = tetray_integrate::KnotSample;
+    type Sample = K::Sample;
 
     #[inline(always)]
     fn sample(&self, s: f32) -> Self::Sample {

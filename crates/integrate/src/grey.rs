@@ -1,0 +1,155 @@
+//! The compact form of grey knots for the inner loops: when every knot's
+//! attenuation and opacity is one number (always so for a transfer
+//! function, whose opacity is scalar), a material is one `Vec4`, the
+//! luminance in `xyz` and the one quantity the method needs in `w`
+//! (attenuation per world unit, or opacity of a unit distance). A scalar is
+//! then classified with a single 4-lane multiply-add.
+
+use glam::{Vec3A, Vec4};
+
+use crate::knots::{split_at_knots, TfKnots};
+
+/// Which quantity a grey material carries in `w`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Lane {
+    /// Attenuation per world unit (the linear-attenuation methods).
+    Tau,
+    /// Opacity of one unit distance (the linear-opacity methods).
+    Alpha,
+}
+
+/// One knot interval: `start + delta * clamp((s - x0) * inv_width, 0, 1)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct GreyInterval {
+    start: Vec4,
+    delta: Vec4,
+    x0: f32,
+    inv_width: f32,
+}
+
+/// Grey knots: the scalars of [`TfKnots`] and their intervals in 4 lanes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GreyKnots {
+    scalars: Vec<f32>,
+    /// Interval `k` (from -1 to `n - 1`) at index `k + 1`.
+    intervals: Vec<GreyInterval>,
+}
+
+/// A scalar classified against grey knots.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GreySample {
+    /// Luminance in `xyz`, the lane quantity in `w`.
+    pub material: Vec4,
+    pub scalar: f32,
+    pub interval: i32,
+}
+
+impl GreySample {
+    #[inline(always)]
+    pub fn lum(&self) -> Vec3A {
+        Vec3A::from_vec4(self.material)
+    }
+}
+
+impl GreyKnots {
+    /// The compact form of `knots`, or `None` when they are not grey.
+    pub fn new(knots: &TfKnots, lane: Lane) -> Option<GreyKnots> {
+        if !knots.is_grey() {
+            return None;
+        }
+        let pack = |k: usize| {
+            let m = knots.materials()[k];
+            let w = match lane {
+                Lane::Tau => m.tau.x,
+                Lane::Alpha => m.alpha.x,
+            };
+            m.lum.extend(w)
+        };
+        let scalars = knots.scalars().to_vec();
+        let n = scalars.len();
+        let constant = |k: usize| GreyInterval {
+            start: pack(k),
+            delta: Vec4::ZERO,
+            x0: scalars[k],
+            inv_width: 0.0,
+        };
+        let mut intervals = vec![constant(0)];
+        for k in 0..n - 1 {
+            let (x0, x1) = (scalars[k], scalars[k + 1]);
+            intervals.push(GreyInterval {
+                start: pack(k),
+                delta: pack(k + 1) - pack(k),
+                x0,
+                inv_width: if x1 > x0 { 1.0 / (x1 - x0) } else { 0.0 },
+            });
+        }
+        intervals.push(constant(n - 1));
+        Some(GreyKnots { scalars, intervals })
+    }
+
+    /// Material at `s` by the linear function of interval `k`.
+    #[inline(always)]
+    fn in_interval(&self, k: isize, s: f32) -> Vec4 {
+        let index = (k + 1).clamp(0, self.intervals.len() as isize - 1) as usize;
+        let iv = &self.intervals[index];
+        let t = (s - iv.x0) * iv.inv_width;
+        let t = if t < 0.0 {
+            0.0
+        } else if t > 1.0 {
+            1.0
+        } else {
+            t
+        };
+        iv.start + iv.delta * t
+    }
+
+    /// `s` classified (right-continuous at steps).
+    #[inline(always)]
+    pub fn sample(&self, s: f32) -> GreySample {
+        let k = self.scalars.partition_point(|&x| x <= s) as isize - 1;
+        GreySample {
+            material: self.in_interval(k, s),
+            scalar: s,
+            interval: k as i32,
+        }
+    }
+
+    /// [`GreyKnots::sample`], trying `near`'s interval first.
+    #[inline(always)]
+    pub fn sample_near(&self, s: f32, near: &GreySample) -> GreySample {
+        let k = near.interval as isize;
+        let last = self.scalars.len() as isize - 1;
+        let above_start = k < 0 || self.scalars[k as usize] <= s;
+        let below_end = k >= last || s < self.scalars[(k + 1) as usize];
+        if above_start && below_end {
+            GreySample {
+                material: self.in_interval(k, s),
+                scalar: s,
+                interval: near.interval,
+            }
+        } else {
+            self.sample(s)
+        }
+    }
+
+    /// Calls `piece(front, back, length)` for the pieces of a segment cut
+    /// at the knots, front to back (as [`TfKnots::split`]).
+    #[inline]
+    pub fn split(
+        &self,
+        front: &GreySample,
+        back: &GreySample,
+        length: f32,
+        piece: impl FnMut(Vec4, Vec4, f32),
+    ) -> usize {
+        split_at_knots(
+            &self.scalars,
+            front.scalar,
+            back.scalar,
+            length,
+            |k, s| self.in_interval(k, s),
+            |s| self.sample(s).material,
+            piece,
+        )
+    }
+}
