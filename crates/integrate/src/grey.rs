@@ -92,14 +92,7 @@ impl GreyKnots {
     fn in_interval(&self, k: isize, s: f32) -> Vec4 {
         let index = (k + 1).clamp(0, self.intervals.len() as isize - 1) as usize;
         let iv = &self.intervals[index];
-        let t = (s - iv.x0) * iv.inv_width;
-        let t = if t < 0.0 {
-            0.0
-        } else if t > 1.0 {
-            1.0
-        } else {
-            t
-        };
+        let t = ((s - iv.x0) * iv.inv_width).clamp(0.0, 1.0);
         iv.start + iv.delta * t
     }
 

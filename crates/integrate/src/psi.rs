@@ -257,18 +257,9 @@ impl PsiTable {
     #[inline(always)]
     fn bilinear(&self, u_back: f32, u_front: f32) -> f32 {
         let n = self.size;
-        // Plain comparisons: a NaN coordinate passes through unclamped.
-        let clamp01 = |u: f32| {
-            if u < 0.0 {
-                0.0
-            } else if u > 1.0 {
-                1.0
-            } else {
-                u
-            }
-        };
-        let x = clamp01(u_back) * self.last;
-        let y = clamp01(u_front) * self.last;
+        // A NaN coordinate passes through the clamp and gives NaN.
+        let x = u_back.clamp(0.0, 1.0) * self.last;
+        let y = u_front.clamp(0.0, 1.0) * self.last;
         let (i, fx) = cell(x, self.last_cell);
         let (j, fy) = cell(y, self.last_cell);
         let base = j as usize * n + i as usize;
