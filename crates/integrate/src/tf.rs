@@ -189,10 +189,10 @@ impl TransferFunction {
         TransferFunction::new(color, opacity)
     }
 
-    /// The default transfer function over `[lo, hi]`: a blue-white-red
-    /// diverging ramp (sampled from Moreland's cool-to-warm map) and an
-    /// opacity that rises with the scalar, so low values stay translucent
-    /// and high values stand out.
+    /// The default transfer function over `[lo, hi]`, what ParaView shows
+    /// a new volume with: a blue-white-red diverging ramp (sampled from
+    /// Moreland's cool-to-warm map) and an opacity rising linearly from 0
+    /// at `lo` to 1 at `hi`.
     pub fn default_for_range(lo: f32, hi: f32) -> TransferFunction {
         let (lo, hi) = if lo.is_finite() && hi.is_finite() && lo < hi {
             (lo, hi)
@@ -216,7 +216,7 @@ impl TransferFunction {
                 rgb: Vec3::from_array(rgb),
             })
             .collect();
-        let opacity = [(0.0, 0.0), (0.3, 0.02), (0.7, 0.15), (1.0, 0.5)]
+        let opacity = [(0.0, 0.0), (1.0, 1.0)]
             .iter()
             .map(|&(t, alpha)| OpacityPoint {
                 scalar: at(t),
