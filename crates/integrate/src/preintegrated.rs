@@ -98,6 +98,12 @@ impl PreintegrationTable {
         self.length
     }
 
+    /// The entries at the table's length, `[i_front * size + i_back]`:
+    /// emitted light and transmittance.
+    pub fn entries(&self) -> (&[Vec3A], &[Vec3A]) {
+        (&self.emitted, &self.transmittance)
+    }
+
     /// How long [`PreintegrationTable::build`] took.
     pub fn build_time(&self) -> Duration {
         self.build_time

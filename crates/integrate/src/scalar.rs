@@ -164,6 +164,21 @@ impl ScalarIntegrator {
         self.method
     }
 
+    /// The opacity unit distance (world units).
+    pub fn unit_distance(&self) -> f32 {
+        self.unit_distance
+    }
+
+    /// The Riemann sum's step (world units).
+    pub fn riemann_step(&self) -> f32 {
+        self.riemann_step
+    }
+
+    /// Whether segments are cut at the knots.
+    pub fn splits_at_knots(&self) -> bool {
+        self.split
+    }
+
     pub fn knots(&self) -> &TfKnots {
         &self.knots
     }

@@ -328,6 +328,26 @@ impl PixelRays {
     pub fn basis(&self) -> ViewBasis {
         self.basis
     }
+
+    /// Where perspective rays start; orthographic rays start on the view
+    /// plane through it.
+    pub fn position(&self) -> Vec3 {
+        self.position
+    }
+
+    /// World size of one pixel (at unit distance, or on the view plane).
+    pub fn pixel_size(&self) -> f32 {
+        self.pixel
+    }
+
+    /// Half the image width and height, in pixels.
+    pub fn half_size(&self) -> (f32, f32) {
+        (self.half_width, self.half_height)
+    }
+
+    pub fn is_orthographic(&self) -> bool {
+        self.orthographic
+    }
 }
 
 /// Rotates `point` by `degrees` (right-handed) about `axis` through `centre`.

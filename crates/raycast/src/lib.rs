@@ -21,5 +21,5 @@ pub use cpu::{
     RenderOptions, RenderOutput, RenderStats,
 };
 pub use image::{Image, ImageError};
-pub use scene::{Scene, SceneError};
+pub use scene::{Scene, SceneError, WalkTet, FINAL_EXIT};
 pub use walk::SegmentIntegrator;

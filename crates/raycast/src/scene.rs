@@ -55,7 +55,7 @@ pub enum SceneError {
 /// One tetrahedron as the walk reads it: 32 bytes, one load per step.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[repr(C, align(32))]
-pub(crate) struct WalkTet {
+pub struct WalkTet {
     /// Point indices.
     pub verts: [u32; 4],
     /// Across local face `f`: `(neighbour << 2) | its local face index of
@@ -66,7 +66,7 @@ pub(crate) struct WalkTet {
 
 /// `WalkTet::next` of a boundary face on the mesh's convex hull: a ray
 /// leaving through it is done (`BoundaryBvh::final_exit_faces`).
-pub(crate) const FINAL_EXIT: u32 = NO_NEIGHBOR - 1;
+pub const FINAL_EXIT: u32 = NO_NEIGHBOR - 1;
 
 /// A mesh ready to be ray cast with one active scalar field.
 pub struct Scene {
@@ -166,6 +166,18 @@ impl Scene {
     /// Number of tetrahedra.
     pub fn tet_count(&self) -> usize {
         self.walk.len()
+    }
+
+    /// What the walk reads per tetrahedron: its points and, across each
+    /// local face, `neighbour << 2 | its local face` or a boundary marker
+    /// (`NO_NEIGHBOR`, [`FINAL_EXIT`]). The GPU kernel uploads this.
+    pub fn walk_records(&self) -> &[WalkTet] {
+        &self.walk
+    }
+
+    /// Per point: position and active scalar, `[x, y, z, s]`.
+    pub fn point_records(&self) -> &[[f32; 4]] {
+        &self.points
     }
 }
 

@@ -1,0 +1,77 @@
+//! Renders the Blunt Fin on the GPU and the CPU and compares them.
+//! Usage: gpu_frame [size] [method]
+use std::path::Path;
+
+use tetray_boundary_bvh::BuildPreset;
+use tetray_gpu::{GpuContext, GpuIntegrator, GpuRaycaster, GpuRenderOptions, GpuScene};
+use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunction};
+use tetray_mesh::{load, LoadOptions};
+use tetray_raycast::{render_scalar, Camera, RenderOptions, Scene};
+
+fn main() -> anyhow::Result<()> {
+    let args: Vec<String> = std::env::args().collect();
+    let size: u32 = args.get(1).map_or(256, |s| s.parse().unwrap());
+    let method: Method = args.get(2).map_or("ppi", |s| s.as_str()).parse()?;
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets");
+    let loaded = load(&root.join("bluntfinxyz.bin"), &LoadOptions::default())?;
+    let scene = Scene::from_loaded(loaded, "density", BuildPreset::default())?;
+    let (lo, hi) = scene.bounds();
+    let mut camera = Camera::reset_to_bounds(lo, hi)?;
+    camera.azimuth(30.0)?;
+    camera.elevation(20.0)?;
+    camera.orthogonalize_view_up()?;
+    let (s_lo, s_hi) = scene
+        .scalar
+        .iter()
+        .fold((f32::INFINITY, f32::NEG_INFINITY), |(a, b), &v| {
+            (a.min(v), b.max(v))
+        });
+    let tf = TransferFunction::default_for_range(s_lo, s_hi);
+    let options = IntegratorOptions {
+        unit_distance: (hi - lo).length() / (scene.tet_count() as f32).cbrt(),
+        ..IntegratorOptions::default()
+    };
+    let integrator = ScalarIntegrator::new(method, &tf, &options)?;
+    let ctx = GpuContext::new()?;
+    println!("adapter: {}", ctx.adapter_name());
+    let raycaster = GpuRaycaster::new(&ctx)?;
+    let gpu_scene = GpuScene::new(&ctx, &scene)?;
+    let gpu_integrator = GpuIntegrator::new(&ctx, &integrator)?;
+    let opts = GpuRenderOptions {
+        width: size,
+        height: size,
+        ..GpuRenderOptions::default()
+    };
+    for _ in 0..3 {
+        let frame = raycaster.render(&ctx, &gpu_scene, &gpu_integrator, &camera, &opts)?;
+        println!("gpu: {:?}", frame.stats);
+    }
+    let frame = raycaster.render(&ctx, &gpu_scene, &gpu_integrator, &camera, &opts)?;
+    let cpu = render_scalar(
+        &scene,
+        &camera,
+        &integrator,
+        &RenderOptions {
+            width: size,
+            height: size,
+            ..RenderOptions::default()
+        },
+    )?;
+    println!("cpu: {:?}", cpu.stats);
+    let mut worst = 0.0f32;
+    let mut differing = 0;
+    for (a, b) in frame.image.rgba.iter().zip(&cpu.image.rgba) {
+        let d = (0..4).map(|c| (a[c] - b[c]).abs()).fold(0.0, f32::max);
+        worst = worst.max(d);
+        if d > 1e-4 {
+            differing += 1;
+        }
+    }
+    println!("max difference {worst:e}, pixels above 1e-4: {differing}");
+    frame
+        .image
+        .write_png(Path::new("/tmp/gpu.png"), glam::Vec3::ZERO)?;
+    cpu.image
+        .write_png(Path::new("/tmp/cpu.png"), glam::Vec3::ZERO)?;
+    Ok(())
+}

@@ -1,0 +1,85 @@
+//! Host twins of the kernel's uniform structs (checked against naga's
+//! layout of the WGSL in tests/layout.rs) and the codes shared with it.
+
+use bytemuck::{Pod, Zeroable};
+use tetray_integrate::Method;
+
+/// WGSL `Params` (shaders/common.wgsl): one per frame.
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+#[repr(C)]
+pub struct Params {
+    pub position: [f32; 3],
+    pub orthographic: u32,
+    pub right: [f32; 3],
+    pub pixel: f32,
+    pub up: [f32; 3],
+    pub half_width: f32,
+    pub direction: [f32; 3],
+    pub half_height: f32,
+    pub bounds_min: [f32; 3],
+    pub eye_inside: u32,
+    pub bounds_max: [f32; 3],
+    pub scene_abs_max: f32,
+    pub width: u32,
+    pub height: u32,
+    pub max_steps: u32,
+    pub method: u32,
+    pub stop_below_sum: f32,
+    pub grey: u32,
+    pub split: u32,
+    pub knot_count: u32,
+    pub psi_size: u32,
+    pub inv_unit_distance: f32,
+    pub riemann_step: f32,
+    pub preint_size: u32,
+    pub preint_offset: u32,
+    pub preint_lo: f32,
+    pub preint_scale: f32,
+    pub preint_length: f32,
+    pub tet_chunk: u32,
+    pub point_chunk: u32,
+    pub prim_offset: u32,
+    pub face_offset: u32,
+}
+
+/// WGSL `Tile`: the pixels of one dispatch.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Pod, Zeroable)]
+#[repr(C)]
+pub struct Tile {
+    pub x0: u32,
+    pub y0: u32,
+    pub width: u32,
+    pub height: u32,
+}
+
+/// Indices into the kernel's counter array (WGSL `STAT_*`).
+pub const STAT_RAYS_HIT: usize = 0;
+pub const STAT_SEGMENTS_LO: usize = 1;
+pub const STAT_SEGMENTS_HI: usize = 2;
+pub const STAT_STEPS_LO: usize = 3;
+pub const STAT_STEPS_HI: usize = 4;
+pub const STAT_ENTRIES: usize = 5;
+pub const STAT_BOUND_HITS: usize = 6;
+pub const STAT_WALK_FAILURES: usize = 7;
+pub const STAT_COUNT: usize = 8;
+
+/// The kernel's code of a method (WGSL `METHOD_*`), or `None` for the f64
+/// reference methods, which have no GPU kernel.
+pub fn method_code(method: Method) -> Option<u32> {
+    Some(match method {
+        Method::Ppi => 0,
+        Method::Exact => 1,
+        Method::Average => 2,
+        Method::AverageOpacity => 3,
+        Method::LinAvgOpacity => 4,
+        Method::LinOpacity => 5,
+        Method::Preintegrated => 6,
+        Method::Riemann => 7,
+        Method::Reference | Method::ReferenceOpacity => return None,
+    })
+}
+
+/// `vec4<f32>` entries per transfer-function interval in the tables buffer.
+pub const INTERVAL_ENTRIES: usize = 4;
+/// `vec4<f32>` entries per (front, back) pair of the pre-integration table.
+pub const PREINT_ENTRIES: usize = 2;

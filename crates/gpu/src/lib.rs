@@ -1,0 +1,25 @@
+//! The wgpu compute ray caster: one invocation per pixel enters the mesh
+//! through the boundary BVH, walks tetrahedron to tetrahedron with an exact
+//! watertight exit rule, integrates every segment (partial pre-integration
+//! with the Psi table by default) and re-enters after leaving the mesh.
+//!
+//! - [`GpuContext`]: adapter and device (wgpu's environment variables pick
+//!   the adapter);
+//! - [`GpuScene`], [`GpuIntegrator`]: a mesh and a transfer function with
+//!   its method, uploaded;
+//! - [`GpuRaycaster::render`]: a frame, read back, with counters and the
+//!   GPU time from timestamp queries.
+//!
+//! The kernel is WGSL in `shaders/` (see [`shaders`]).
+
+mod context;
+mod error;
+pub mod layout;
+mod render;
+pub mod shaders;
+mod upload;
+
+pub use context::GpuContext;
+pub use error::GpuError;
+pub use render::{GpuFrame, GpuRaycaster, GpuRenderOptions, GpuStats, TILE};
+pub use upload::{GpuIntegrator, GpuScene};

@@ -1,0 +1,460 @@
+//! Rendering a frame: parameters from the camera, one compute pass of tiled
+//! dispatches, optional timestamp queries, and the read-back of the image
+//! and the counters.
+
+use std::time::{Duration, Instant};
+
+use tetray_raycast::{Camera, Image};
+use wgpu::util::DeviceExt;
+
+use crate::layout::{self, Params, Tile, STAT_COUNT};
+use crate::shaders::raycast_source;
+use crate::upload::{GpuIntegrator, GpuScene};
+use crate::{GpuContext, GpuError};
+
+/// Pixels per side of one dispatch; a frame is as many dispatches as it
+/// takes (each short, and within the workgroup-count limit).
+pub const TILE: u32 = 512;
+/// Kernel workgroup edge (8 x 8 invocations).
+const WORKGROUP: u32 = 8;
+
+/// What to render.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GpuRenderOptions {
+    pub width: u32,
+    pub height: u32,
+    /// Stop a ray once its opacity reaches this; 1 disables.
+    pub early_termination: f32,
+    /// Bound on tetrahedra visited per ray; `None`: tetrahedra + 1024.
+    pub max_steps_per_ray: Option<u32>,
+}
+
+impl Default for GpuRenderOptions {
+    fn default() -> Self {
+        GpuRenderOptions {
+            width: 512,
+            height: 512,
+            early_termination: 1.0,
+            max_steps_per_ray: None,
+        }
+    }
+}
+
+/// Counters and times of one GPU frame.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct GpuStats {
+    pub rays: u64,
+    pub rays_hit: u64,
+    pub segments: u64,
+    pub steps: u64,
+    pub entries: u64,
+    pub steps_bound_hits: u64,
+    pub walk_failures: u64,
+    /// GPU time of the pass (timestamp queries), when the adapter has them.
+    pub gpu_time: Option<Duration>,
+    /// Submission to completion, read-back excluded.
+    pub wall_time: Duration,
+}
+
+impl GpuStats {
+    /// The pass time: GPU timestamps when available, else wall time.
+    pub fn frame_time(&self) -> Duration {
+        self.gpu_time.unwrap_or(self.wall_time)
+    }
+}
+
+/// A rendered frame.
+#[derive(Debug, Clone)]
+pub struct GpuFrame {
+    pub image: Image,
+    pub stats: GpuStats,
+}
+
+/// The compiled kernel and its binding layout.
+pub struct GpuRaycaster {
+    pipeline: wgpu::ComputePipeline,
+    layout: wgpu::BindGroupLayout,
+}
+
+impl GpuRaycaster {
+    pub fn new(ctx: &GpuContext) -> Result<GpuRaycaster, GpuError> {
+        let device = &ctx.device;
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("raycast.wgsl"),
+            source: wgpu::ShaderSource::Wgsl(raycast_source().into()),
+        });
+        let storage = |binding: u32, read_only: bool| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Storage { read_only },
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        };
+        let uniform = |binding: u32, dynamic: bool| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: dynamic,
+                min_binding_size: None,
+            },
+            count: None,
+        };
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("raycast bindings"),
+            entries: &[
+                uniform(0, false),
+                uniform(1, true),
+                storage(2, true),
+                storage(3, true),
+                storage(4, true),
+                storage(5, true),
+                storage(6, true),
+                storage(7, true),
+                wgpu::BindGroupLayoutEntry {
+                    binding: 8,
+                    visibility: wgpu::ShaderStages::COMPUTE,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    count: None,
+                },
+                storage(9, false),
+                storage(10, false),
+            ],
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("raycast"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("raycast"),
+            layout: Some(&pipeline_layout),
+            module: &module,
+            entry_point: Some("main"),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+        if let Some(error) = pollster::block_on(scope.pop()) {
+            return Err(GpuError::Driver(error.to_string()));
+        }
+        Ok(GpuRaycaster { pipeline, layout })
+    }
+
+    /// Renders `scene` seen by `camera` with `integrator` and reads the
+    /// image and counters back.
+    pub fn render(
+        &self,
+        ctx: &GpuContext,
+        scene: &GpuScene,
+        integrator: &GpuIntegrator,
+        camera: &Camera,
+        opts: &GpuRenderOptions,
+    ) -> Result<GpuFrame, GpuError> {
+        if opts.early_termination.is_nan() || opts.early_termination <= 0.0 {
+            return Err(GpuError::EarlyTermination(opts.early_termination));
+        }
+        let (width, height) = (opts.width, opts.height);
+        let rays = camera.pixel_rays(width, height)?;
+        let pixels = u64::from(width) * u64::from(height);
+        let image_bytes = pixels * 16;
+        if image_bytes
+            > ctx
+                .limits
+                .max_storage_buffer_binding_size
+                .min(ctx.limits.max_buffer_size)
+        {
+            return Err(GpuError::ImageTooLarge {
+                width,
+                height,
+                bytes: image_bytes,
+                limit: ctx.limits.max_storage_buffer_binding_size,
+            });
+        }
+        let params = frame_params(scene, integrator, &rays, camera, opts);
+        let device = &ctx.device;
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let params_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("params"),
+            contents: bytemuck::bytes_of(&params),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        let (tiles, stride) = tile_buffer(ctx, width, height);
+        let image = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("image"),
+            size: image_bytes,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let stats = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("stats"),
+            contents: bytemuck::cast_slice(&[0u32; STAT_COUNT]),
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        });
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("raycast"),
+            layout: &self.layout,
+            entries: &[
+                buffer_entry(0, &params_buffer),
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                        buffer: &tiles.buffer,
+                        offset: 0,
+                        size: wgpu::BufferSize::new(std::mem::size_of::<Tile>() as u64),
+                    }),
+                },
+                buffer_entry(2, &scene.points[0]),
+                buffer_entry(3, &scene.points[1]),
+                buffer_entry(4, &scene.tets[0]),
+                buffer_entry(5, &scene.tets[1]),
+                buffer_entry(6, &scene.bvh),
+                buffer_entry(7, &integrator.tables),
+                wgpu::BindGroupEntry {
+                    binding: 8,
+                    resource: wgpu::BindingResource::TextureView(&integrator.psi),
+                },
+                buffer_entry(9, &image),
+                buffer_entry(10, &stats),
+            ],
+        });
+        let queries = ctx.timestamps.then(|| Timestamps::new(ctx));
+        let mut encoder = device.create_command_encoder(&Default::default());
+        {
+            let timestamp_writes = queries.as_ref().map(|q| wgpu::ComputePassTimestampWrites {
+                query_set: &q.set,
+                beginning_of_pass_write_index: Some(0),
+                end_of_pass_write_index: Some(1),
+            });
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("raycast"),
+                timestamp_writes,
+            });
+            pass.set_pipeline(&self.pipeline);
+            for (i, tile) in tiles.tiles.iter().enumerate() {
+                pass.set_bind_group(0, &bind_group, &[(i as u64 * stride) as u32]);
+                pass.dispatch_workgroups(
+                    tile.width.div_ceil(WORKGROUP),
+                    tile.height.div_ceil(WORKGROUP),
+                    1,
+                );
+            }
+        }
+        if let Some(q) = &queries {
+            q.resolve(&mut encoder);
+        }
+        let image_read = readback_buffer(ctx, "image readback", image_bytes);
+        let stats_read = readback_buffer(ctx, "stats readback", (STAT_COUNT * 4) as u64);
+        encoder.copy_buffer_to_buffer(&image, 0, &image_read, 0, image_bytes);
+        encoder.copy_buffer_to_buffer(&stats, 0, &stats_read, 0, (STAT_COUNT * 4) as u64);
+        let start = Instant::now();
+        let submission = ctx.queue.submit([encoder.finish()]);
+        device
+            .poll(wgpu::PollType::Wait {
+                submission_index: Some(submission),
+                timeout: None,
+            })
+            .map_err(|e| GpuError::Driver(e.to_string()))?;
+        let wall_time = start.elapsed();
+        if let Some(error) = pollster::block_on(scope.pop()) {
+            return Err(GpuError::Driver(error.to_string()));
+        }
+        let counters: Vec<u32> = read_buffer(ctx, &stats_read)?;
+        let rgba: Vec<[f32; 4]> = read_buffer(ctx, &image_read)?;
+        let gpu_time = match &queries {
+            Some(q) => q.read(ctx)?,
+            None => None,
+        };
+        let wide = |lo: usize, hi: usize| u64::from(counters[lo]) | (u64::from(counters[hi]) << 32);
+        let stats = GpuStats {
+            rays: pixels,
+            rays_hit: u64::from(counters[layout::STAT_RAYS_HIT]),
+            segments: wide(layout::STAT_SEGMENTS_LO, layout::STAT_SEGMENTS_HI),
+            steps: wide(layout::STAT_STEPS_LO, layout::STAT_STEPS_HI),
+            entries: u64::from(counters[layout::STAT_ENTRIES]),
+            steps_bound_hits: u64::from(counters[layout::STAT_BOUND_HITS]),
+            walk_failures: u64::from(counters[layout::STAT_WALK_FAILURES]),
+            gpu_time,
+            wall_time,
+        };
+        Ok(GpuFrame {
+            image: Image::from_pixels(width, height, rgba)?,
+            stats,
+        })
+    }
+}
+
+/// The frame's parameters (WGSL `Params`).
+fn frame_params(
+    scene: &GpuScene,
+    integrator: &GpuIntegrator,
+    rays: &tetray_raycast::PixelRays,
+    camera: &Camera,
+    opts: &GpuRenderOptions,
+) -> Params {
+    let basis = rays.basis();
+    let (half_width, half_height) = rays.half_size();
+    let (lo, hi) = scene.bounds;
+    let preint = integrator.preint;
+    let default_steps = (scene.tet_count() as u64 + 1024).min(u64::from(u32::MAX)) as u32;
+    Params {
+        position: rays.position().to_array(),
+        orthographic: u32::from(rays.is_orthographic()),
+        right: basis.right.to_array(),
+        pixel: rays.pixel_size(),
+        up: basis.up.to_array(),
+        half_width,
+        direction: basis.direction.to_array(),
+        half_height,
+        bounds_min: lo.to_array(),
+        eye_inside: u32::from(!rays.is_orthographic() && camera.is_inside_bounds(lo, hi)),
+        bounds_max: hi.to_array(),
+        scene_abs_max: scene.scene_abs_max,
+        width: opts.width,
+        height: opts.height,
+        max_steps: opts.max_steps_per_ray.unwrap_or(default_steps),
+        method: integrator.method,
+        stop_below_sum: 3.0 * (1.0 - opts.early_termination),
+        grey: u32::from(integrator.grey),
+        split: u32::from(integrator.split),
+        knot_count: integrator.knot_count,
+        psi_size: integrator.psi_size,
+        inv_unit_distance: integrator.inv_unit_distance,
+        riemann_step: integrator.riemann_step,
+        preint_size: preint.map_or(0, |p| p.size),
+        preint_offset: preint.map_or(0, |p| p.offset),
+        preint_lo: preint.map_or(0.0, |p| p.lo),
+        preint_scale: preint.map_or(0.0, |p| p.scale),
+        preint_length: preint.map_or(1.0, |p| p.length),
+        tet_chunk: scene.tet_chunk,
+        point_chunk: scene.point_chunk,
+        prim_offset: scene.prim_offset,
+        face_offset: scene.face_offset,
+    }
+}
+
+struct Tiles {
+    buffer: wgpu::Buffer,
+    tiles: Vec<Tile>,
+}
+
+/// The frame cut into [`TILE`]-sized dispatches, one `Tile` uniform each at
+/// a stride the dynamic offsets accept.
+fn tile_buffer(ctx: &GpuContext, width: u32, height: u32) -> (Tiles, u64) {
+    let stride = u64::from(ctx.limits.min_uniform_buffer_offset_alignment).max(16);
+    let mut tiles = Vec::new();
+    for y0 in (0..height).step_by(TILE as usize) {
+        for x0 in (0..width).step_by(TILE as usize) {
+            tiles.push(Tile {
+                x0,
+                y0,
+                width: TILE.min(width - x0),
+                height: TILE.min(height - y0),
+            });
+        }
+    }
+    let mut bytes = vec![0u8; tiles.len() * stride as usize];
+    for (i, tile) in tiles.iter().enumerate() {
+        let at = i * stride as usize;
+        bytes[at..at + 16].copy_from_slice(bytemuck::bytes_of(tile));
+    }
+    let buffer = ctx
+        .device
+        .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("tiles"),
+            contents: &bytes,
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+    (Tiles { buffer, tiles }, stride)
+}
+
+fn buffer_entry(binding: u32, buffer: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
+    wgpu::BindGroupEntry {
+        binding,
+        resource: buffer.as_entire_binding(),
+    }
+}
+
+fn readback_buffer(ctx: &GpuContext, label: &str, size: u64) -> wgpu::Buffer {
+    ctx.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some(label),
+        size,
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    })
+}
+
+/// Maps a read-back buffer and copies it out.
+fn read_buffer<T: bytemuck::Pod>(
+    ctx: &GpuContext,
+    buffer: &wgpu::Buffer,
+) -> Result<Vec<T>, GpuError> {
+    let slice = buffer.slice(..);
+    let (sender, receiver) = std::sync::mpsc::channel();
+    slice.map_async(wgpu::MapMode::Read, move |result| {
+        let _ = sender.send(result);
+    });
+    ctx.device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map_err(|e| GpuError::Readback(e.to_string()))?;
+    receiver
+        .recv()
+        .map_err(|e| GpuError::Readback(e.to_string()))?
+        .map_err(|e| GpuError::Readback(e.to_string()))?;
+    let data = {
+        let view = slice
+            .get_mapped_range()
+            .map_err(|e| GpuError::Readback(e.to_string()))?;
+        bytemuck::cast_slice(&view).to_vec()
+    };
+    buffer.unmap();
+    Ok(data)
+}
+
+/// Two timestamps around the pass.
+struct Timestamps {
+    set: wgpu::QuerySet,
+    resolve: wgpu::Buffer,
+    read: wgpu::Buffer,
+    period_ns: f32,
+}
+
+impl Timestamps {
+    fn new(ctx: &GpuContext) -> Timestamps {
+        let set = ctx.device.create_query_set(&wgpu::QuerySetDescriptor {
+            label: Some("raycast timestamps"),
+            ty: wgpu::QueryType::Timestamp,
+            count: 2,
+        });
+        let resolve = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("timestamps"),
+            size: 16,
+            usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        Timestamps {
+            set,
+            resolve,
+            read: readback_buffer(ctx, "timestamps readback", 16),
+            period_ns: ctx.queue.get_timestamp_period(),
+        }
+    }
+
+    fn resolve(&self, encoder: &mut wgpu::CommandEncoder) {
+        encoder.resolve_query_set(&self.set, 0..2, &self.resolve, 0);
+        encoder.copy_buffer_to_buffer(&self.resolve, 0, &self.read, 0, 16);
+    }
+
+    fn read(&self, ctx: &GpuContext) -> Result<Option<Duration>, GpuError> {
+        let ticks: Vec<u64> = read_buffer(ctx, &self.read)?;
+        let ns = ticks[1].saturating_sub(ticks[0]) as f64 * f64::from(self.period_ns);
+        Ok((ns > 0.0).then(|| Duration::from_secs_f64(ns * 1e-9)))
+    }
+}

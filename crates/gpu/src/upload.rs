@@ -1,0 +1,299 @@
+//! What the kernel reads, uploaded once per mesh ([`GpuScene`]) and once
+//! per transfer function and method ([`GpuIntegrator`]).
+//!
+//! Large meshes: the tetrahedron and point arrays may each be split over
+//! two storage bindings when they exceed the adapter's
+//! `max_storage_buffer_binding_size`; beyond twice that the upload fails
+//! naming the limit.
+
+use bytemuck::Pod;
+use glam::Vec3;
+use tetray_integrate::{GammaSpacing, Method, Model, ScalarIntegrator};
+use tetray_raycast::Scene;
+use wgpu::util::DeviceExt;
+
+use crate::layout::{method_code, INTERVAL_ENTRIES, PREINT_ENTRIES};
+use crate::{GpuContext, GpuError};
+
+/// Storage bindings an array may be split over.
+const MAX_CHUNKS: u64 = 2;
+
+/// A mesh on the GPU.
+pub struct GpuScene {
+    pub(crate) points: [wgpu::Buffer; 2],
+    pub(crate) tets: [wgpu::Buffer; 2],
+    pub(crate) bvh: wgpu::Buffer,
+    pub(crate) point_chunk: u32,
+    pub(crate) tet_chunk: u32,
+    pub(crate) prim_offset: u32,
+    pub(crate) face_offset: u32,
+    pub(crate) bounds: (Vec3, Vec3),
+    pub(crate) scene_abs_max: f32,
+    tet_count: usize,
+    bytes: u64,
+}
+
+impl GpuScene {
+    pub fn new(ctx: &GpuContext, scene: &Scene) -> Result<GpuScene, GpuError> {
+        let flat = scene.bvh.flatten()?;
+        let walk = scene.walk_records();
+        let mut tet_words: Vec<[u32; 4]> = Vec::with_capacity(2 * walk.len());
+        for record in walk {
+            tet_words.push(record.verts);
+            tet_words.push(record.next);
+        }
+        let mut bvh_words: Vec<[u32; 4]> = Vec::new();
+        for node in flat.nodes() {
+            let words: [u32; 8] = bytemuck::cast(*node);
+            bvh_words.push([words[0], words[1], words[2], words[3]]);
+            bvh_words.push([words[4], words[5], words[6], words[7]]);
+        }
+        let prim_offset = bvh_words.len();
+        bvh_words.extend(
+            flat.prims()
+                .iter()
+                .map(|p| bytemuck::cast::<_, [u32; 4]>(*p)),
+        );
+        let face_offset = bvh_words.len();
+        let faces: Vec<u32> = scene
+            .topology
+            .boundary_faces
+            .iter()
+            .map(|f| (f.tet << 2) | u32::from(f.local_face))
+            .collect();
+        bvh_words.extend(faces.chunks(4).map(|c| {
+            let mut entry = [0u32; 4];
+            entry[..c.len()].copy_from_slice(c);
+            entry
+        }));
+        let limits = &ctx.limits;
+        let (tets, tet_chunk) = chunked(ctx, "tetrahedra", &tet_words, 2)?;
+        let (points, point_chunk) = chunked(ctx, "points", scene.point_records(), 1)?;
+        let bvh_bytes = std::mem::size_of_val(bvh_words.as_slice()) as u64;
+        if bvh_bytes > limits.max_storage_buffer_binding_size {
+            return Err(GpuError::TooLarge {
+                what: "the boundary BVH",
+                bytes: bvh_bytes,
+                limit_name: "max_storage_buffer_binding_size",
+                limit: limits.max_storage_buffer_binding_size,
+                chunks: 1,
+            });
+        }
+        let bvh = storage(ctx, "boundary bvh", &bvh_words);
+        let bytes = std::mem::size_of_val(tet_words.as_slice()) as u64
+            + std::mem::size_of_val(scene.point_records()) as u64
+            + bvh_bytes;
+        Ok(GpuScene {
+            points,
+            tets,
+            bvh,
+            point_chunk,
+            tet_chunk,
+            prim_offset: prim_offset as u32,
+            face_offset: face_offset as u32,
+            bounds: scene.bounds(),
+            scene_abs_max: flat.scene_abs_max(),
+            tet_count: walk.len(),
+            bytes,
+        })
+    }
+
+    /// Bytes of mesh data on the GPU.
+    pub fn bytes(&self) -> u64 {
+        self.bytes
+    }
+
+    pub fn tet_count(&self) -> usize {
+        self.tet_count
+    }
+}
+
+/// `items` in up to [`MAX_CHUNKS`] storage buffers: the buffers (an unused
+/// second one is a small placeholder) and the number of logical elements
+/// (`per_element` items each) in the first.
+fn chunked<T: Pod>(
+    ctx: &GpuContext,
+    what: &'static str,
+    items: &[T],
+    per_element: usize,
+) -> Result<([wgpu::Buffer; 2], u32), GpuError> {
+    let limit = ctx
+        .limits
+        .max_storage_buffer_binding_size
+        .min(ctx.limits.max_buffer_size);
+    let element_bytes = (std::mem::size_of::<T>() * per_element) as u64;
+    let elements = items.len() / per_element;
+    let per_chunk = (limit / element_bytes) as usize;
+    let bytes = elements as u64 * element_bytes;
+    if elements > per_chunk * MAX_CHUNKS as usize || elements > u32::MAX as usize {
+        return Err(GpuError::TooLarge {
+            what,
+            bytes,
+            limit_name: "max_storage_buffer_binding_size",
+            limit,
+            chunks: MAX_CHUNKS,
+        });
+    }
+    let first = elements.min(per_chunk);
+    let split = first * per_element;
+    let head = storage(ctx, what, &items[..split]);
+    let tail = storage(ctx, what, &items[split..]);
+    Ok(([head, tail], first as u32))
+}
+
+/// A read-only storage buffer holding `items` (at least 16 bytes: WGSL
+/// arrays may not be bound empty).
+pub(crate) fn storage<T: Pod>(ctx: &GpuContext, label: &str, items: &[T]) -> wgpu::Buffer {
+    let mut bytes = bytemuck::cast_slice::<T, u8>(items).to_vec();
+    bytes.resize(bytes.len().max(16), 0);
+    ctx.device
+        .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(label),
+            contents: &bytes,
+            usage: wgpu::BufferUsages::STORAGE,
+        })
+}
+
+/// A transfer function and method on the GPU.
+pub struct GpuIntegrator {
+    pub(crate) method: u32,
+    pub(crate) grey: bool,
+    pub(crate) split: bool,
+    pub(crate) knot_count: u32,
+    pub(crate) inv_unit_distance: f32,
+    pub(crate) riemann_step: f32,
+    pub(crate) tables: wgpu::Buffer,
+    pub(crate) psi: wgpu::TextureView,
+    pub(crate) psi_size: u32,
+    pub(crate) preint: Option<PreintParams>,
+}
+
+#[derive(Clone, Copy)]
+pub(crate) struct PreintParams {
+    pub size: u32,
+    pub offset: u32,
+    pub lo: f32,
+    pub scale: f32,
+    pub length: f32,
+}
+
+impl GpuIntegrator {
+    pub fn new(ctx: &GpuContext, integrator: &ScalarIntegrator) -> Result<GpuIntegrator, GpuError> {
+        let method = integrator.method();
+        let code = method_code(method).ok_or(GpuError::Driver(format!(
+            "the {method} integrator (f64 quadrature) has no GPU kernel; use --renderer cpu"
+        )))?;
+        let knots = integrator.knots();
+        let opacity = method.model() == Model::LinearOpacity;
+        let mut tables = pack_intervals(knots, opacity);
+        let mut preint = None;
+        if let Some(table) = integrator.preintegration_table() {
+            let (lo, hi) = table.scalar_range();
+            let size = table.size();
+            let offset = tables.len() as u32;
+            let (emitted, transmittance) = table.entries();
+            for (e, t) in emitted.iter().zip(transmittance) {
+                tables.push([e.x, e.y, e.z, 0.0]);
+                tables.push([t.x, t.y, t.z, 0.0]);
+            }
+            debug_assert_eq!(tables.len() - offset as usize, PREINT_ENTRIES * size * size);
+            preint = Some(PreintParams {
+                size: size as u32,
+                offset,
+                lo,
+                scale: if hi > lo {
+                    (size - 1) as f32 / (hi - lo)
+                } else {
+                    0.0
+                },
+                length: table.length(),
+            });
+        }
+        let (psi, psi_size) = match integrator.psi_table() {
+            Some(table) if method == Method::Ppi => {
+                if table.spacing() != GammaSpacing::Quadratic {
+                    return Err(GpuError::PsiSpacing(table.spacing().name()));
+                }
+                (
+                    psi_texture(ctx, table.size() as u32, table.values()),
+                    table.size() as u32,
+                )
+            }
+            _ => (psi_texture(ctx, 2, &[1.0; 4]), 2),
+        };
+        Ok(GpuIntegrator {
+            method: code,
+            grey: knots.is_grey(),
+            split: integrator.splits_at_knots(),
+            knot_count: knots.len() as u32,
+            inv_unit_distance: 1.0 / integrator.unit_distance(),
+            riemann_step: integrator.riemann_step(),
+            tables: storage(ctx, "transfer function tables", &tables),
+            psi,
+            psi_size,
+            preint,
+        })
+    }
+}
+
+/// The knot intervals as the kernel reads them (shaders/integrate.wgsl):
+/// interval k (-1 below the first knot .. n - 1 above the last) at
+/// `INTERVAL_ENTRIES * (k + 1)`: luminance start + x0, luminance delta +
+/// 1 / width, quantity start, quantity delta; the quantity is the opacity
+/// for the opacity methods, else the attenuation.
+fn pack_intervals(knots: &tetray_integrate::TfKnots, opacity: bool) -> Vec<[f32; 4]> {
+    let scalars = knots.scalars();
+    let materials = knots.materials();
+    let n = scalars.len();
+    let quantity = |k: usize| {
+        let m = &materials[k];
+        if opacity {
+            m.alpha
+        } else {
+            m.tau
+        }
+    };
+    let mut out = Vec::with_capacity(INTERVAL_ENTRIES * (n + 1));
+    let mut push = |x0: f32, inv_width: f32, k0: usize, k1: usize| {
+        let (l0, l1) = (materials[k0].lum, materials[k1].lum);
+        let (q0, q1) = (quantity(k0), quantity(k1));
+        let dl = l1 - l0;
+        let dq = q1 - q0;
+        out.push([l0.x, l0.y, l0.z, x0]);
+        out.push([dl.x, dl.y, dl.z, inv_width]);
+        out.push([q0.x, q0.y, q0.z, 0.0]);
+        out.push([dq.x, dq.y, dq.z, 0.0]);
+    };
+    push(scalars[0], 0.0, 0, 0);
+    for k in 0..n - 1 {
+        let (x0, x1) = (scalars[k], scalars[k + 1]);
+        let inv_width = if x1 > x0 { 1.0 / (x1 - x0) } else { 0.0 };
+        push(x0, inv_width, k, k + 1);
+    }
+    push(scalars[n - 1], 0.0, n - 1, n - 1);
+    out
+}
+
+/// An r32float texture of the Psi table (row = gamma_f, column = gamma_b).
+fn psi_texture(ctx: &GpuContext, size: u32, values: &[f32]) -> wgpu::TextureView {
+    let texture = ctx.device.create_texture_with_data(
+        &ctx.queue,
+        &wgpu::TextureDescriptor {
+            label: Some("psi table"),
+            size: wgpu::Extent3d {
+                width: size,
+                height: size,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::R32Float,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        },
+        wgpu::util::TextureDataOrder::LayerMajor,
+        bytemuck::cast_slice(values),
+    );
+    texture.create_view(&wgpu::TextureViewDescriptor::default())
+}

@@ -1,0 +1,136 @@
+// Shared declarations of the ray-casting kernel: parameters, bindings and
+// buffer accessors. The host concatenates common, predicate, bvh, integrate
+// and raycast (in that order) into one module.
+
+// Per-frame parameters (host: tetray_gpu::layout::Params).
+struct Params {
+    // Camera: perspective rays start at `position` and run along
+    // `direction + offset`, orthographic rays start at `position + offset`
+    // and run along `direction`; offset = right * x + up * y, with
+    // x = (px + 0.5 - half_width) pixel, y = (half_height - py - 0.5) pixel.
+    position: vec3<f32>,
+    orthographic: u32,
+    right: vec3<f32>,
+    pixel: f32,
+    up: vec3<f32>,
+    half_width: f32,
+    direction: vec3<f32>,
+    half_height: f32,
+    bounds_min: vec3<f32>,
+    // Perspective eye inside the mesh bounds: rays walk from their line's
+    // first entry, behind the eye too.
+    eye_inside: u32,
+    bounds_max: vec3<f32>,
+    scene_abs_max: f32,
+    width: u32,
+    height: u32,
+    max_steps: u32,
+    method: u32,
+    // Stop once the sum of the transmittance channels is at most this.
+    stop_below_sum: f32,
+    // 1: every knot's attenuation and opacity is the same in all channels.
+    grey: u32,
+    split: u32,
+    knot_count: u32,
+    psi_size: u32,
+    inv_unit_distance: f32,
+    riemann_step: f32,
+    preint_size: u32,
+    preint_offset: u32,
+    preint_lo: f32,
+    preint_scale: f32,
+    preint_length: f32,
+    // Tetrahedra in `tets0` (the rest are in `tets1`), points likewise.
+    tet_chunk: u32,
+    point_chunk: u32,
+    // Offsets (in vec4 entries) of the primitives and the face table in `bvh`.
+    prim_offset: u32,
+    face_offset: u32,
+}
+
+// The pixels of one dispatch (a dynamic-offset uniform, one per tile).
+struct Tile {
+    x0: u32,
+    y0: u32,
+    width: u32,
+    height: u32,
+}
+
+// Per-frame counters (host: tetray_gpu::layout::STAT_*).
+const STAT_RAYS_HIT: u32 = 0u;
+const STAT_SEGMENTS_LO: u32 = 1u;
+const STAT_SEGMENTS_HI: u32 = 2u;
+const STAT_STEPS_LO: u32 = 3u;
+const STAT_STEPS_HI: u32 = 4u;
+const STAT_ENTRIES: u32 = 5u;
+const STAT_BOUND_HITS: u32 = 6u;
+const STAT_WALK_FAILURES: u32 = 7u;
+const STAT_COUNT: u32 = 8u;
+
+// Methods (host: tetray_gpu::layout::method_code).
+const METHOD_PPI: u32 = 0u;
+const METHOD_EXACT: u32 = 1u;
+const METHOD_AVERAGE: u32 = 2u;
+const METHOD_AVERAGE_OPACITY: u32 = 3u;
+const METHOD_LIN_AVG_OPACITY: u32 = 4u;
+const METHOD_LIN_OPACITY: u32 = 5u;
+const METHOD_PREINTEGRATED: u32 = 6u;
+const METHOD_RIEMANN: u32 = 7u;
+
+// A boundary face with no neighbour, and one on the convex hull (a ray
+// leaving through it is done).
+const NO_NEIGHBOR: u32 = 0xffffffffu;
+const FINAL_EXIT: u32 = 0xfffffffeu;
+
+@group(0) @binding(0) var<uniform> params: Params;
+@group(0) @binding(1) var<uniform> tile: Tile;
+// Per point: position and active scalar.
+@group(0) @binding(2) var<storage, read> points0: array<vec4<f32>>;
+@group(0) @binding(3) var<storage, read> points1: array<vec4<f32>>;
+// Per tetrahedron two entries: vertex indices, then across each local face
+// (neighbour << 2 | its local face), NO_NEIGHBOR or FINAL_EXIT.
+@group(0) @binding(4) var<storage, read> tets0: array<vec4<u32>>;
+@group(0) @binding(5) var<storage, read> tets1: array<vec4<u32>>;
+// BVH nodes (two entries each: min.xyz + index, max.xyz + count, floats as
+// bits), then primitives (three point indices + boundary face), then per
+// boundary face its tetrahedron << 2 | local face, four to an entry.
+@group(0) @binding(6) var<storage, read> bvh: array<vec4<u32>>;
+// Transfer-function intervals (5 entries each), then the pre-integration
+// table (2 entries per (front, back) pair).
+@group(0) @binding(7) var<storage, read> tables: array<vec4<f32>>;
+@group(0) @binding(8) var psi_table: texture_2d<f32>;
+// Premultiplied RGBA per pixel of the whole image.
+@group(0) @binding(9) var<storage, read_write> image: array<vec4<f32>>;
+@group(0) @binding(10) var<storage, read_write> stats: array<atomic<u32>, STAT_COUNT>;
+
+fn point_at(i: u32) -> vec4<f32> {
+    if (i < params.point_chunk) {
+        return points0[i];
+    }
+    return points1[i - params.point_chunk];
+}
+
+fn tet_verts(t: u32) -> vec4<u32> {
+    if (t < params.tet_chunk) {
+        return tets0[2u * t];
+    }
+    return tets1[2u * (t - params.tet_chunk)];
+}
+
+fn tet_next(t: u32) -> vec4<u32> {
+    if (t < params.tet_chunk) {
+        return tets0[2u * t + 1u];
+    }
+    return tets1[2u * (t - params.tet_chunk) + 1u];
+}
+
+// Adds `value` to a 64-bit counter kept as two words.
+fn add_wide(lo: u32, hi: u32, value: u32) {
+    if (value == 0u) {
+        return;
+    }
+    let old = atomicAdd(&stats[lo], value);
+    if (old > 0xffffffffu - value) {
+        atomicAdd(&stats[hi], 1u);
+    }
+}

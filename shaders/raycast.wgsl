@@ -1,0 +1,242 @@
+// The ray-casting kernel: one invocation per pixel enters the mesh through
+// the boundary BVH, walks tetrahedron to tetrahedron across the exit face
+// chosen by the exact edge predicate, integrates every segment, composites
+// front to back and re-enters through the BVH after leaving the mesh (CPU
+// twin: tetray_gpu::twin::raycast; reference: tetray_raycast).
+
+// Local face f is opposite vertex f, counter-clockwise seen from outside
+// (tetray_mesh::FACE_VERTICES).
+const FACE_VERTS = array<vec3<u32>, 4>(
+    vec3<u32>(1u, 2u, 3u), vec3<u32>(0u, 3u, 2u), vec3<u32>(0u, 1u, 3u), vec3<u32>(0u, 2u, 1u),
+);
+// For the apex (the vertex opposite the entry face), its other vertices.
+const APEX_OTHERS = array<vec3<u32>, 4>(
+    vec3<u32>(1u, 2u, 3u), vec3<u32>(0u, 2u, 3u), vec3<u32>(0u, 1u, 3u), vec3<u32>(0u, 1u, 2u),
+);
+// Exit face of apex a for the signs of its three edges (bit i: the edge to
+// APEX_OTHERS[a][i] is positive), at [8 a + code]: face | next << 4 |
+// prev << 8 (the vertices after and before the apex in the face), or
+// 0xffff where all signs agree (only a flat tetrahedron). The exit face is
+// the one whose edge apex -> next is positive and apex -> prev negative
+// (tetray_raycast's walk, where the table is derived).
+const APEX_EXITS = array<u32, 32>(
+    0xffffu, 0x0312u, 0x0123u, 0x0312u, 0x0231u, 0x0231u, 0x0123u, 0xffffu,
+    0xffffu, 0x0203u, 0x0320u, 0x0320u, 0x0032u, 0x0203u, 0x0032u, 0xffffu,
+    0xffffu, 0x0301u, 0x0013u, 0x0301u, 0x0130u, 0x0130u, 0x0013u, 0xffffu,
+    0xffffu, 0x0102u, 0x0210u, 0x0210u, 0x0021u, 0x0102u, 0x0021u, 0xffffu,
+);
+// "Unbounded" distances (WGSL has no infinity literal).
+const FAR: f32 = 3.4e38;
+
+// The current tetrahedron in the frame of the ray: projected vertices and
+// their scalars.
+struct Cell {
+    p: array<vec3<f32>, 4>,
+    s: vec4<f32>,
+}
+
+fn load_cell(ray: Ray, tet: u32) -> Cell {
+    let v = tet_verts(tet);
+    var cell: Cell;
+    for (var i = 0u; i < 4u; i++) {
+        let q = point_at(v[i]);
+        cell.p[i] = project(ray, q.xyz);
+        cell.s[i] = q.w;
+    }
+    return cell;
+}
+
+// Scalar where the ray crosses face f.
+fn face_scalar(cell: Cell, f: u32) -> f32 {
+    let v = FACE_VERTS[f];
+    let x = crossing(cell.p[v.x], cell.p[v.y], cell.p[v.z]);
+    return dot(x.weights, vec3<f32>(cell.s[v.x], cell.s[v.y], cell.s[v.z]));
+}
+
+struct Exit {
+    ok: bool,
+    face: u32,
+    t: f32,
+    s: f32,
+}
+
+// Leaves a cell entered through f_in: the exit face, the distance to it and
+// the scalar there.
+fn exit_cell(cell: Cell, f_in: u32) -> Exit {
+    let apex = f_in;
+    let others = APEX_OTHERS[apex];
+    let pa = cell.p[apex];
+    var e: vec4<f32>;
+    var code = 0u;
+    for (var i = 0u; i < 3u; i++) {
+        let k = others[i];
+        let value = edge_value(pa, cell.p[k]);
+        e[k] = value;
+        if (edge_sign_of(pa, cell.p[k], value) > 0) {
+            code |= 1u << i;
+        }
+    }
+    let packed = APEX_EXITS[8u * apex + code];
+    if (packed == 0xffffu) {
+        return Exit(false, 0u, 0.0, 0.0);
+    }
+    let f = packed & 0xfu;
+    let next = (packed >> 4u) & 0xfu;
+    let prev = (packed >> 8u) & 0xfu;
+    // Weights of (apex, next, prev): the edge functions of the opposite
+    // edges, ef(prev, apex) = -ef(apex, prev).
+    let w = vec3<f32>(edge_value(cell.p[next], cell.p[prev]), -e[prev], e[next]);
+    let z = vec3<f32>(pa.z, cell.p[next].z, cell.p[prev].z);
+    let x = crossing_from(w, z);
+    let s = dot(x.weights, vec3<f32>(cell.s[apex], cell.s[next], cell.s[prev]));
+    return Exit(true, f, x.t, s);
+}
+
+var<workgroup> group_stats: array<atomic<u32>, STAT_COUNT>;
+
+struct Counters {
+    hit: u32,
+    segments: u32,
+    steps: u32,
+    entries: u32,
+    bound_hit: u32,
+    failure: u32,
+}
+
+struct Pixel {
+    color: vec4<f32>,
+    counters: Counters,
+}
+
+// Casts the ray of pixel (px, py).
+fn cast_ray(px: u32, py: u32) -> Pixel {
+    let x = (f32(px) + 0.5 - params.half_width) * params.pixel;
+    let y = (params.half_height - (f32(py) + 0.5)) * params.pixel;
+    let offset = params.right * x + params.up * y;
+    var ray: Ray;
+    var inside: bool;
+    if (params.orthographic == 1u) {
+        ray = make_ray(params.position + offset, params.direction);
+        inside = all(ray.origin >= params.bounds_min) && all(ray.origin <= params.bounds_max);
+    } else {
+        ray = make_ray(params.position, params.direction + offset);
+        inside = params.eye_inside == 1u;
+    }
+    // A ray whose origin may be inside the mesh walks from its line's first
+    // entry, behind the origin too, and integrates from distance 0.
+    var t_cursor = select(0.0, -FAR, inside);
+    var color = vec3<f32>(0.0);
+    var trans = vec3<f32>(1.0);
+    var counters = Counters(0u, 0u, 0u, 0u, 0u, 0u);
+    // Boundary faces entered at distance skip_t with no segment since: a
+    // re-entry query must not return them again.
+    var skip: Skip;
+    skip.len = 0u;
+    var skip_t = 0.0;
+    var done = false;
+    for (var entry_count = 0u; entry_count < params.max_steps && !done; entry_count++) {
+        let entry = first_entry(ray, t_cursor, FAR, skip);
+        if (!entry.found) {
+            break;
+        }
+        counters.entries++;
+        counters.hit = 1u;
+        if (skip.len == 0u || entry.t != skip_t) {
+            skip.len = 0u;
+            skip_t = entry.t;
+        }
+        if (skip.len < SKIP_MAX) {
+            skip.faces[skip.len] = entry.face;
+            skip.len++;
+        }
+        let code = face_entry(entry.face);
+        var tet = code >> 2u;
+        var f_in = code & 3u;
+        var cell = load_cell(ray, tet);
+        var t_in = max(entry.t, t_cursor);
+        var s_in = face_scalar(cell, f_in);
+        var sample_in = sample_at(s_in);
+        loop {
+            counters.steps++;
+            if (counters.steps > params.max_steps) {
+                counters.bound_hit = 1u;
+                done = true;
+                break;
+            }
+            let ex = exit_cell(cell, f_in);
+            if (!ex.ok) {
+                // Only a flat tetrahedron has no exit face.
+                counters.failure = 1u;
+                done = true;
+                break;
+            }
+            let t_out = max(ex.t, t_in);
+            let sample_out = sample_near(ex.s, sample_in);
+            if (t_out > t_in) {
+                skip.len = 0u;
+                if (t_out > 0.0) {
+                    // Clip at the ray origin; the scalar is linear along
+                    // the segment.
+                    var front = sample_in;
+                    if (t_in < 0.0) {
+                        front = sample_at(s_in + (ex.s - s_in) * (-t_in / (t_out - t_in)));
+                    }
+                    let light = segment_light(front, sample_out, t_out - max(t_in, 0.0));
+                    color += trans * light.emitted;
+                    trans *= light.transmittance;
+                    counters.segments++;
+                    if (trans.x + trans.y + trans.z <= params.stop_below_sum) {
+                        done = true;
+                        break;
+                    }
+                }
+            }
+            t_in = t_out;
+            s_in = ex.s;
+            sample_in = sample_out;
+            let next = tet_next(tet)[ex.face];
+            if (next >= FINAL_EXIT) {
+                // Left through the convex hull: nothing more to meet;
+                // otherwise ask the BVH where the ray comes back.
+                done = next == FINAL_EXIT;
+                t_cursor = t_out;
+                break;
+            }
+            tet = next >> 2u;
+            f_in = next & 3u;
+            cell = load_cell(ray, tet);
+        }
+    }
+    let alpha = 1.0 - (trans.x + trans.y + trans.z) / 3.0;
+    return Pixel(vec4<f32>(color, alpha), counters);
+}
+
+@compute @workgroup_size(8, 8)
+fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(local_invocation_index) lid: u32) {
+    if (lid < STAT_COUNT) {
+        atomicStore(&group_stats[lid], 0u);
+    }
+    workgroupBarrier();
+    if (gid.x < tile.width && gid.y < tile.height) {
+        let px = tile.x0 + gid.x;
+        let py = tile.y0 + gid.y;
+        let pixel = cast_ray(px, py);
+        image[py * params.width + px] = pixel.color;
+        let c = pixel.counters;
+        atomicAdd(&group_stats[STAT_RAYS_HIT], c.hit);
+        atomicAdd(&group_stats[STAT_SEGMENTS_LO], c.segments);
+        atomicAdd(&group_stats[STAT_STEPS_LO], c.steps);
+        atomicAdd(&group_stats[STAT_ENTRIES], c.entries);
+        atomicAdd(&group_stats[STAT_BOUND_HITS], c.bound_hit);
+        atomicAdd(&group_stats[STAT_WALK_FAILURES], c.failure);
+    }
+    workgroupBarrier();
+    if (lid == 0u) {
+        atomicAdd(&stats[STAT_RAYS_HIT], atomicLoad(&group_stats[STAT_RAYS_HIT]));
+        add_wide(STAT_SEGMENTS_LO, STAT_SEGMENTS_HI, atomicLoad(&group_stats[STAT_SEGMENTS_LO]));
+        add_wide(STAT_STEPS_LO, STAT_STEPS_HI, atomicLoad(&group_stats[STAT_STEPS_LO]));
+        atomicAdd(&stats[STAT_ENTRIES], atomicLoad(&group_stats[STAT_ENTRIES]));
+        atomicAdd(&stats[STAT_BOUND_HITS], atomicLoad(&group_stats[STAT_BOUND_HITS]));
+        atomicAdd(&stats[STAT_WALK_FAILURES], atomicLoad(&group_stats[STAT_WALK_FAILURES]));
+    }
+}
