@@ -58,16 +58,29 @@ fn main() -> anyhow::Result<()> {
         },
     )?;
     println!("cpu: {:?}", cpu.stats);
-    let mut worst = 0.0f32;
-    let mut differing = 0;
-    for (a, b) in frame.image.rgba.iter().zip(&cpu.image.rgba) {
-        let d = (0..4).map(|c| (a[c] - b[c]).abs()).fold(0.0, f32::max);
-        worst = worst.max(d);
-        if d > 1e-4 {
-            differing += 1;
+    let t = std::time::Instant::now();
+    let (twin, twin_stats) = tetray_gpu::twin::render(
+        &tetray_gpu::SceneData::new(&scene)?,
+        &tetray_gpu::IntegratorData::new(&integrator)?,
+        &camera,
+        &opts,
+    )?;
+    println!("twin: {twin_stats:?} in {:?}", t.elapsed());
+    let compare = |name: &str, a: &tetray_raycast::Image, b: &tetray_raycast::Image| {
+        let mut worst = 0.0f32;
+        let mut differing = 0;
+        for (a, b) in a.rgba.iter().zip(&b.rgba) {
+            let d = (0..4).map(|c| (a[c] - b[c]).abs()).fold(0.0, f32::max);
+            worst = worst.max(d);
+            if d > 1e-4 {
+                differing += 1;
+            }
         }
-    }
-    println!("max difference {worst:e}, pixels above 1e-4: {differing}");
+        println!("{name}: max difference {worst:e}, pixels above 1e-4: {differing}");
+    };
+    compare("gpu vs cpu", &frame.image, &cpu.image);
+    compare("gpu vs twin", &frame.image, &twin);
+    compare("twin vs cpu", &twin, &cpu.image);
     frame
         .image
         .write_png(Path::new("/tmp/gpu.png"), glam::Vec3::ZERO)?;

@@ -17,9 +17,12 @@ mod error;
 pub mod layout;
 mod render;
 pub mod shaders;
+pub mod twin;
 mod upload;
 
 pub use context::GpuContext;
 pub use error::GpuError;
-pub use render::{GpuFrame, GpuRaycaster, GpuRenderOptions, GpuStats, TILE};
-pub use upload::{GpuIntegrator, GpuScene};
+pub use render::{
+    frame_params, GpuFrame, GpuRaycaster, GpuRenderOptions, GpuStats, SceneLayout, TILE,
+};
+pub use upload::{GpuIntegrator, GpuScene, IntegratorData, PreintParams, SceneData};

@@ -9,7 +9,7 @@ use wgpu::util::DeviceExt;
 
 use crate::layout::{self, Params, Tile, STAT_COUNT};
 use crate::shaders::raycast_source;
-use crate::upload::{GpuIntegrator, GpuScene};
+use crate::upload::{GpuIntegrator, GpuScene, IntegratorData};
 use crate::{GpuContext, GpuError};
 
 /// Pixels per side of one dispatch; a frame is as many dispatches as it
@@ -158,11 +158,8 @@ impl GpuRaycaster {
         camera: &Camera,
         opts: &GpuRenderOptions,
     ) -> Result<GpuFrame, GpuError> {
-        if opts.early_termination.is_nan() || opts.early_termination <= 0.0 {
-            return Err(GpuError::EarlyTermination(opts.early_termination));
-        }
         let (width, height) = (opts.width, opts.height);
-        let rays = camera.pixel_rays(width, height)?;
+        let params = frame_params(&scene.layout(), &integrator.data, camera, opts)?;
         let pixels = u64::from(width) * u64::from(height);
         let image_bytes = pixels * 16;
         if image_bytes
@@ -178,7 +175,6 @@ impl GpuRaycaster {
                 limit: ctx.limits.max_storage_buffer_binding_size,
             });
         }
-        let params = frame_params(scene, integrator, &rays, camera, opts);
         let device = &ctx.device;
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let params_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -291,20 +287,35 @@ impl GpuRaycaster {
     }
 }
 
-/// The frame's parameters (WGSL `Params`).
-fn frame_params(
-    scene: &GpuScene,
-    integrator: &GpuIntegrator,
-    rays: &tetray_raycast::PixelRays,
+/// What the frame parameters need to know of a mesh and its buffers.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SceneLayout {
+    pub bounds: (glam::Vec3, glam::Vec3),
+    pub scene_abs_max: f32,
+    pub tet_count: usize,
+    pub tet_chunk: u32,
+    pub point_chunk: u32,
+    pub prim_offset: u32,
+    pub face_offset: u32,
+}
+
+/// The frame's parameters (WGSL `Params`) for `camera` and `opts`.
+pub fn frame_params(
+    scene: &SceneLayout,
+    integrator: &IntegratorData,
     camera: &Camera,
     opts: &GpuRenderOptions,
-) -> Params {
+) -> Result<Params, GpuError> {
+    if opts.early_termination.is_nan() || opts.early_termination <= 0.0 {
+        return Err(GpuError::EarlyTermination(opts.early_termination));
+    }
+    let rays = camera.pixel_rays(opts.width, opts.height)?;
     let basis = rays.basis();
     let (half_width, half_height) = rays.half_size();
     let (lo, hi) = scene.bounds;
     let preint = integrator.preint;
-    let default_steps = (scene.tet_count() as u64 + 1024).min(u64::from(u32::MAX)) as u32;
-    Params {
+    let default_steps = (scene.tet_count as u64 + 1024).min(u64::from(u32::MAX)) as u32;
+    Ok(Params {
         position: rays.position().to_array(),
         orthographic: u32::from(rays.is_orthographic()),
         right: basis.right.to_array(),
@@ -337,7 +348,7 @@ fn frame_params(
         point_chunk: scene.point_chunk,
         prim_offset: scene.prim_offset,
         face_offset: scene.face_offset,
-    }
+    })
 }
 
 struct Tiles {

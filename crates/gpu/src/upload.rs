@@ -13,10 +13,77 @@ use tetray_raycast::Scene;
 use wgpu::util::DeviceExt;
 
 use crate::layout::{method_code, INTERVAL_ENTRIES, PREINT_ENTRIES};
+use crate::render::SceneLayout;
 use crate::{GpuContext, GpuError};
 
 /// Storage bindings an array may be split over.
 const MAX_CHUNKS: u64 = 2;
+
+/// What the kernel reads of a mesh, as host arrays (uploaded by
+/// [`GpuScene::new`]; read directly by the CPU twin).
+#[derive(Debug, Clone)]
+pub struct SceneData {
+    /// Per point: position and active scalar.
+    pub points: Vec<[f32; 4]>,
+    /// Per tetrahedron two entries: vertex indices, then across each local
+    /// face `neighbour << 2 | its local face` or a boundary marker.
+    pub tets: Vec<[u32; 4]>,
+    /// BVH nodes (two entries each), primitives, then the face table.
+    pub bvh: Vec<[u32; 4]>,
+    pub prim_offset: u32,
+    pub face_offset: u32,
+    pub bounds: (Vec3, Vec3),
+    pub scene_abs_max: f32,
+}
+
+impl SceneData {
+    pub fn new(scene: &Scene) -> Result<SceneData, GpuError> {
+        let flat = scene.bvh.flatten()?;
+        let walk = scene.walk_records();
+        let mut tets: Vec<[u32; 4]> = Vec::with_capacity(2 * walk.len());
+        for record in walk {
+            tets.push(record.verts);
+            tets.push(record.next);
+        }
+        let mut bvh: Vec<[u32; 4]> = Vec::new();
+        for node in flat.nodes() {
+            let words: [u32; 8] = bytemuck::cast(*node);
+            bvh.push([words[0], words[1], words[2], words[3]]);
+            bvh.push([words[4], words[5], words[6], words[7]]);
+        }
+        let prim_offset = bvh.len() as u32;
+        bvh.extend(
+            flat.prims()
+                .iter()
+                .map(|p| bytemuck::cast::<_, [u32; 4]>(*p)),
+        );
+        let face_offset = bvh.len() as u32;
+        let faces: Vec<u32> = scene
+            .topology
+            .boundary_faces
+            .iter()
+            .map(|f| (f.tet << 2) | u32::from(f.local_face))
+            .collect();
+        bvh.extend(faces.chunks(4).map(|c| {
+            let mut entry = [0u32; 4];
+            entry[..c.len()].copy_from_slice(c);
+            entry
+        }));
+        Ok(SceneData {
+            points: scene.point_records().to_vec(),
+            tets,
+            bvh,
+            prim_offset,
+            face_offset,
+            bounds: scene.bounds(),
+            scene_abs_max: flat.scene_abs_max(),
+        })
+    }
+
+    pub fn tet_count(&self) -> usize {
+        self.tets.len() / 2
+    }
+}
 
 /// A mesh on the GPU.
 pub struct GpuScene {
@@ -34,42 +101,16 @@ pub struct GpuScene {
 }
 
 impl GpuScene {
+    /// Uploads a mesh ([`SceneData::new`] then [`GpuScene::upload`]).
     pub fn new(ctx: &GpuContext, scene: &Scene) -> Result<GpuScene, GpuError> {
-        let flat = scene.bvh.flatten()?;
-        let walk = scene.walk_records();
-        let mut tet_words: Vec<[u32; 4]> = Vec::with_capacity(2 * walk.len());
-        for record in walk {
-            tet_words.push(record.verts);
-            tet_words.push(record.next);
-        }
-        let mut bvh_words: Vec<[u32; 4]> = Vec::new();
-        for node in flat.nodes() {
-            let words: [u32; 8] = bytemuck::cast(*node);
-            bvh_words.push([words[0], words[1], words[2], words[3]]);
-            bvh_words.push([words[4], words[5], words[6], words[7]]);
-        }
-        let prim_offset = bvh_words.len();
-        bvh_words.extend(
-            flat.prims()
-                .iter()
-                .map(|p| bytemuck::cast::<_, [u32; 4]>(*p)),
-        );
-        let face_offset = bvh_words.len();
-        let faces: Vec<u32> = scene
-            .topology
-            .boundary_faces
-            .iter()
-            .map(|f| (f.tet << 2) | u32::from(f.local_face))
-            .collect();
-        bvh_words.extend(faces.chunks(4).map(|c| {
-            let mut entry = [0u32; 4];
-            entry[..c.len()].copy_from_slice(c);
-            entry
-        }));
+        GpuScene::upload(ctx, &SceneData::new(scene)?)
+    }
+
+    pub fn upload(ctx: &GpuContext, data: &SceneData) -> Result<GpuScene, GpuError> {
         let limits = &ctx.limits;
-        let (tets, tet_chunk) = chunked(ctx, "tetrahedra", &tet_words, 2)?;
-        let (points, point_chunk) = chunked(ctx, "points", scene.point_records(), 1)?;
-        let bvh_bytes = std::mem::size_of_val(bvh_words.as_slice()) as u64;
+        let (tets, tet_chunk) = chunked(ctx, "tetrahedra", &data.tets, 2)?;
+        let (points, point_chunk) = chunked(ctx, "points", &data.points, 1)?;
+        let bvh_bytes = std::mem::size_of_val(data.bvh.as_slice()) as u64;
         if bvh_bytes > limits.max_storage_buffer_binding_size {
             return Err(GpuError::TooLarge {
                 what: "the boundary BVH",
@@ -79,9 +120,9 @@ impl GpuScene {
                 chunks: 1,
             });
         }
-        let bvh = storage(ctx, "boundary bvh", &bvh_words);
-        let bytes = std::mem::size_of_val(tet_words.as_slice()) as u64
-            + std::mem::size_of_val(scene.point_records()) as u64
+        let bvh = storage(ctx, "boundary bvh", &data.bvh);
+        let bytes = std::mem::size_of_val(data.tets.as_slice()) as u64
+            + std::mem::size_of_val(data.points.as_slice()) as u64
             + bvh_bytes;
         Ok(GpuScene {
             points,
@@ -89,11 +130,11 @@ impl GpuScene {
             bvh,
             point_chunk,
             tet_chunk,
-            prim_offset: prim_offset as u32,
-            face_offset: face_offset as u32,
-            bounds: scene.bounds(),
-            scene_abs_max: flat.scene_abs_max(),
-            tet_count: walk.len(),
+            prim_offset: data.prim_offset,
+            face_offset: data.face_offset,
+            bounds: data.bounds,
+            scene_abs_max: data.scene_abs_max,
+            tet_count: data.tet_count(),
             bytes,
         })
     }
@@ -105,6 +146,34 @@ impl GpuScene {
 
     pub fn tet_count(&self) -> usize {
         self.tet_count
+    }
+
+    pub fn layout(&self) -> SceneLayout {
+        SceneLayout {
+            bounds: self.bounds,
+            scene_abs_max: self.scene_abs_max,
+            tet_count: self.tet_count,
+            tet_chunk: self.tet_chunk,
+            point_chunk: self.point_chunk,
+            prim_offset: self.prim_offset,
+            face_offset: self.face_offset,
+        }
+    }
+}
+
+impl SceneData {
+    /// The layout of this data in single (unsplit) arrays, as the CPU twin
+    /// reads it.
+    pub fn layout(&self) -> SceneLayout {
+        SceneLayout {
+            bounds: self.bounds,
+            scene_abs_max: self.scene_abs_max,
+            tet_count: self.tet_count(),
+            tet_chunk: self.tet_count() as u32,
+            point_chunk: self.points.len() as u32,
+            prim_offset: self.prim_offset,
+            face_offset: self.face_offset,
+        }
     }
 }
 
@@ -154,22 +223,27 @@ pub(crate) fn storage<T: Pod>(ctx: &GpuContext, label: &str, items: &[T]) -> wgp
         })
 }
 
-/// A transfer function and method on the GPU.
-pub struct GpuIntegrator {
-    pub(crate) method: u32,
-    pub(crate) grey: bool,
-    pub(crate) split: bool,
-    pub(crate) knot_count: u32,
-    pub(crate) inv_unit_distance: f32,
-    pub(crate) riemann_step: f32,
-    pub(crate) tables: wgpu::Buffer,
-    pub(crate) psi: wgpu::TextureView,
-    pub(crate) psi_size: u32,
-    pub(crate) preint: Option<PreintParams>,
+/// What the kernel reads of a transfer function and method, as host
+/// arrays (uploaded by [`GpuIntegrator::new`]; read by the CPU twin).
+#[derive(Debug, Clone)]
+pub struct IntegratorData {
+    pub method: u32,
+    pub grey: bool,
+    pub split: bool,
+    pub knot_count: u32,
+    pub inv_unit_distance: f32,
+    pub riemann_step: f32,
+    /// Knot intervals, then the pre-integration table.
+    pub tables: Vec<[f32; 4]>,
+    /// The Psi table, `psi_size` squared (a 2 x 2 placeholder when unused).
+    pub psi: Vec<f32>,
+    pub psi_size: u32,
+    pub preint: Option<PreintParams>,
 }
 
-#[derive(Clone, Copy)]
-pub(crate) struct PreintParams {
+/// Where the pre-integration table is in `tables` and how it is indexed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PreintParams {
     pub size: u32,
     pub offset: u32,
     pub lo: f32,
@@ -177,8 +251,8 @@ pub(crate) struct PreintParams {
     pub length: f32,
 }
 
-impl GpuIntegrator {
-    pub fn new(ctx: &GpuContext, integrator: &ScalarIntegrator) -> Result<GpuIntegrator, GpuError> {
+impl IntegratorData {
+    pub fn new(integrator: &ScalarIntegrator) -> Result<IntegratorData, GpuError> {
         let method = integrator.method();
         let code = method_code(method).ok_or(GpuError::Driver(format!(
             "the {method} integrator (f64 quadrature) has no GPU kernel; use --renderer cpu"
@@ -214,25 +288,45 @@ impl GpuIntegrator {
                 if table.spacing() != GammaSpacing::Quadratic {
                     return Err(GpuError::PsiSpacing(table.spacing().name()));
                 }
-                (
-                    psi_texture(ctx, table.size() as u32, table.values()),
-                    table.size() as u32,
-                )
+                (table.values().to_vec(), table.size() as u32)
             }
-            _ => (psi_texture(ctx, 2, &[1.0; 4]), 2),
+            _ => (vec![1.0; 4], 2),
         };
-        Ok(GpuIntegrator {
+        Ok(IntegratorData {
             method: code,
             grey: knots.is_grey(),
             split: integrator.splits_at_knots(),
             knot_count: knots.len() as u32,
             inv_unit_distance: 1.0 / integrator.unit_distance(),
             riemann_step: integrator.riemann_step(),
-            tables: storage(ctx, "transfer function tables", &tables),
+            tables,
             psi,
             psi_size,
             preint,
         })
+    }
+}
+
+/// A transfer function and method on the GPU.
+pub struct GpuIntegrator {
+    pub(crate) data: IntegratorData,
+    pub(crate) tables: wgpu::Buffer,
+    pub(crate) psi: wgpu::TextureView,
+}
+
+impl GpuIntegrator {
+    /// Uploads a transfer function and method ([`IntegratorData::new`] then
+    /// [`GpuIntegrator::upload`]).
+    pub fn new(ctx: &GpuContext, integrator: &ScalarIntegrator) -> Result<GpuIntegrator, GpuError> {
+        Ok(GpuIntegrator::upload(ctx, IntegratorData::new(integrator)?))
+    }
+
+    pub fn upload(ctx: &GpuContext, data: IntegratorData) -> GpuIntegrator {
+        GpuIntegrator {
+            tables: storage(ctx, "transfer function tables", &data.tables),
+            psi: psi_texture(ctx, data.psi_size, &data.psi),
+            data,
+        }
     }
 }
 

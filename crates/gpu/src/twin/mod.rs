@@ -1,0 +1,279 @@
+//! The CPU twin of the ray-casting kernel: the same inputs (the uploaded
+//! arrays and `Params`), the same f32 operations in the same order, one
+//! pixel at a time. Tests hold the GPU to it and it to the f64 reference
+//! ray caster; where the GPU and the twin differ, it is the device's
+//! arithmetic (fused multiply-adds, its exp), not the algorithm.
+
+mod bvh;
+mod integrate;
+pub mod predicate;
+
+use glam::{Vec3, Vec4};
+use rayon::prelude::*;
+use tetray_raycast::{Camera, Image};
+
+use crate::layout::{Params, STAT_COUNT};
+use crate::render::{frame_params, GpuRenderOptions};
+use crate::upload::{IntegratorData, SceneData};
+use crate::GpuError;
+use bvh::{face_entry, first_entry, Skip, SKIP_MAX};
+use integrate::{sample_at, sample_near, segment_light};
+use predicate::{crossing, crossing_from, edge_sign_of, edge_value, make_ray, project, Ray};
+
+pub use integrate::{dawson, erfcx};
+
+/// Everything the kernel reads.
+pub struct Inputs<'a> {
+    pub params: &'a Params,
+    pub points: &'a [[f32; 4]],
+    pub tets: &'a [[u32; 4]],
+    pub bvh: &'a [[u32; 4]],
+    pub tables: &'a [[f32; 4]],
+    pub psi: &'a [f32],
+}
+
+impl Inputs<'_> {
+    fn point(&self, i: u32) -> Vec4 {
+        Vec4::from_array(self.points[i as usize])
+    }
+}
+
+/// Renders a frame as the kernel does (in parallel over rows).
+pub fn render(
+    scene: &SceneData,
+    integrator: &IntegratorData,
+    camera: &Camera,
+    opts: &GpuRenderOptions,
+) -> Result<(Image, [u64; STAT_COUNT]), GpuError> {
+    let params = frame_params(&scene.layout(), integrator, camera, opts)?;
+    let input = Inputs {
+        params: &params,
+        points: &scene.points,
+        tets: &scene.tets,
+        bvh: &scene.bvh,
+        tables: &integrator.tables,
+        psi: &integrator.psi,
+    };
+    let width = opts.width as usize;
+    let mut rgba = vec![[0.0f32; 4]; width * opts.height as usize];
+    let totals = rgba
+        .par_chunks_mut(width)
+        .enumerate()
+        .map(|(py, row)| {
+            let mut stats = [0u64; STAT_COUNT];
+            for (px, out) in row.iter_mut().enumerate() {
+                let (color, c) = cast_ray(&input, px as u32, py as u32);
+                *out = color.to_array();
+                for (total, value) in stats.iter_mut().zip(c.as_stats()) {
+                    *total += value;
+                }
+            }
+            stats
+        })
+        .reduce(
+            || [0u64; STAT_COUNT],
+            |a, b| std::array::from_fn(|i| a[i] + b[i]),
+        );
+    Ok((Image::from_pixels(opts.width, opts.height, rgba)?, totals))
+}
+
+const FACE_VERTS: [[usize; 3]; 4] = [[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]];
+const APEX_OTHERS: [[usize; 3]; 4] = [[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]];
+/// The kernel's exit table (checked against the CPU walk's in tests).
+pub const APEX_EXITS: [[u32; 8]; 4] = [
+    [
+        0xffff, 0x0312, 0x0123, 0x0312, 0x0231, 0x0231, 0x0123, 0xffff,
+    ],
+    [
+        0xffff, 0x0203, 0x0320, 0x0320, 0x0032, 0x0203, 0x0032, 0xffff,
+    ],
+    [
+        0xffff, 0x0301, 0x0013, 0x0301, 0x0130, 0x0130, 0x0013, 0xffff,
+    ],
+    [
+        0xffff, 0x0102, 0x0210, 0x0210, 0x0021, 0x0102, 0x0021, 0xffff,
+    ],
+];
+const FAR: f32 = 3.4e38;
+const NO_EXIT: u32 = 0xffff;
+
+struct Cell {
+    p: [Vec3; 4],
+    s: Vec4,
+}
+
+fn load_cell(input: &Inputs, ray: &Ray, tet: u32) -> Cell {
+    let v = input.tets[2 * tet as usize];
+    let mut cell = Cell {
+        p: [Vec3::ZERO; 4],
+        s: Vec4::ZERO,
+    };
+    for i in 0..4 {
+        let q = input.point(v[i]);
+        cell.p[i] = project(ray, q.truncate());
+        cell.s[i] = q.w;
+    }
+    cell
+}
+
+fn face_scalar(cell: &Cell, f: usize) -> f32 {
+    let [a, b, c] = FACE_VERTS[f];
+    let x = crossing(cell.p[a], cell.p[b], cell.p[c]);
+    x.weights.dot(Vec3::new(cell.s[a], cell.s[b], cell.s[c]))
+}
+
+/// `(face, t, s)` of the exit, or `None` for a flat tetrahedron.
+fn exit_cell(cell: &Cell, f_in: usize) -> Option<(usize, f32, f32)> {
+    let apex = f_in;
+    let pa = cell.p[apex];
+    let mut e = [0.0f32; 4];
+    let mut code = 0;
+    for (i, &k) in APEX_OTHERS[apex].iter().enumerate() {
+        let value = edge_value(pa, cell.p[k]);
+        e[k] = value;
+        if edge_sign_of(pa, cell.p[k], value) > 0 {
+            code |= 1 << i;
+        }
+    }
+    let packed = APEX_EXITS[apex][code];
+    if packed == NO_EXIT {
+        return None;
+    }
+    let (f, next, prev) = (
+        (packed & 0xf) as usize,
+        ((packed >> 4) & 0xf) as usize,
+        ((packed >> 8) & 0xf) as usize,
+    );
+    let w = Vec3::new(edge_value(cell.p[next], cell.p[prev]), -e[prev], e[next]);
+    let z = Vec3::new(pa.z, cell.p[next].z, cell.p[prev].z);
+    let x = crossing_from(w, z);
+    let s = x
+        .weights
+        .dot(Vec3::new(cell.s[apex], cell.s[next], cell.s[prev]));
+    Some((f, x.t, s))
+}
+
+#[derive(Default)]
+struct Counters {
+    hit: u64,
+    segments: u64,
+    steps: u64,
+    entries: u64,
+    bound_hit: u64,
+    failure: u64,
+}
+
+impl Counters {
+    /// In the order of the kernel's counter array (wide counters in `LO`).
+    fn as_stats(&self) -> [u64; STAT_COUNT] {
+        [
+            self.hit,
+            self.segments,
+            0,
+            self.steps,
+            0,
+            self.entries,
+            self.bound_hit,
+            self.failure,
+        ]
+    }
+}
+
+fn cast_ray(input: &Inputs, px: u32, py: u32) -> (Vec4, Counters) {
+    let p = input.params;
+    let x = (px as f32 + 0.5 - p.half_width) * p.pixel;
+    let y = (p.half_height - (py as f32 + 0.5)) * p.pixel;
+    let (right, up) = (Vec3::from_array(p.right), Vec3::from_array(p.up));
+    let (position, direction) = (Vec3::from_array(p.position), Vec3::from_array(p.direction));
+    let offset = right * x + up * y;
+    let (ray, inside) = if p.orthographic == 1 {
+        let ray = make_ray(position + offset, direction);
+        let (lo, hi) = (
+            Vec3::from_array(p.bounds_min),
+            Vec3::from_array(p.bounds_max),
+        );
+        let inside = ray.origin.cmpge(lo).all() && ray.origin.cmple(hi).all();
+        (ray, inside)
+    } else {
+        (make_ray(position, direction + offset), p.eye_inside == 1)
+    };
+    let mut t_cursor = if inside { -FAR } else { 0.0 };
+    let mut color = Vec3::ZERO;
+    let mut trans = Vec3::ONE;
+    let mut counters = Counters::default();
+    let mut skip = Skip::default();
+    let mut skip_t = 0.0f32;
+    let mut done = false;
+    let mut entry_count = 0;
+    while entry_count < p.max_steps && !done {
+        entry_count += 1;
+        let entry = first_entry(input, &ray, t_cursor, FAR, &skip);
+        if !entry.found {
+            break;
+        }
+        counters.entries += 1;
+        counters.hit = 1;
+        if skip.len == 0 || entry.t != skip_t {
+            skip.len = 0;
+            skip_t = entry.t;
+        }
+        if skip.len < SKIP_MAX {
+            skip.faces[skip.len] = entry.face;
+            skip.len += 1;
+        }
+        let code = face_entry(input, entry.face);
+        let mut tet = code >> 2;
+        let mut f_in = (code & 3) as usize;
+        let mut cell = load_cell(input, &ray, tet);
+        let mut t_in = entry.t.max(t_cursor);
+        let mut s_in = face_scalar(&cell, f_in);
+        let mut sample_in = sample_at(input, s_in);
+        loop {
+            counters.steps += 1;
+            if counters.steps > u64::from(p.max_steps) {
+                counters.bound_hit = 1;
+                done = true;
+                break;
+            }
+            let Some((f_out, t_exit, s_out)) = exit_cell(&cell, f_in) else {
+                counters.failure = 1;
+                done = true;
+                break;
+            };
+            let t_out = t_exit.max(t_in);
+            let sample_out = sample_near(input, s_out, &sample_in);
+            if t_out > t_in {
+                skip.len = 0;
+                if t_out > 0.0 {
+                    let front = if t_in < 0.0 {
+                        sample_at(input, s_in + (s_out - s_in) * (-t_in / (t_out - t_in)))
+                    } else {
+                        sample_in
+                    };
+                    let light = segment_light(input, &front, &sample_out, t_out - t_in.max(0.0));
+                    color += trans * light.emitted;
+                    trans *= light.transmittance;
+                    counters.segments += 1;
+                    if trans.x + trans.y + trans.z <= p.stop_below_sum {
+                        done = true;
+                        break;
+                    }
+                }
+            }
+            t_in = t_out;
+            s_in = s_out;
+            sample_in = sample_out;
+            let next = input.tets[2 * tet as usize + 1][f_out];
+            if next >= tetray_raycast::FINAL_EXIT {
+                done = next == tetray_raycast::FINAL_EXIT;
+                t_cursor = t_out;
+                break;
+            }
+            tet = next >> 2;
+            f_in = (next & 3) as usize;
+            cell = load_cell(input, &ray, tet);
+        }
+    }
+    let alpha = 1.0 - (trans.x + trans.y + trans.z) / 3.0;
+    (color.extend(alpha), counters)
+}

@@ -1,0 +1,97 @@
+//! Host structs match naga's layout of the WGSL structs they are uploaded
+//! into: every member's offset and the struct size.
+
+use std::mem::{offset_of, size_of};
+
+use tetray_gpu::layout::{Params, Tile};
+use tetray_gpu::shaders::raycast_source;
+
+/// (member name, offset) of WGSL struct `name`, and its size.
+fn wgsl_layout(module: &naga::Module, name: &str) -> (Vec<(String, u32)>, u32) {
+    let (_, ty) = module
+        .types
+        .iter()
+        .find(|(_, t)| t.name.as_deref() == Some(name))
+        .unwrap_or_else(|| panic!("no WGSL struct {name}"));
+    match &ty.inner {
+        naga::TypeInner::Struct { members, span } => (
+            members
+                .iter()
+                .map(|m| (m.name.clone().unwrap_or_default(), m.offset))
+                .collect(),
+            *span,
+        ),
+        other => panic!("{name} is not a struct: {other:?}"),
+    }
+}
+
+fn module() -> naga::Module {
+    naga::front::wgsl::parse_str(&raycast_source()).expect("the kernel parses")
+}
+
+macro_rules! rust_offsets {
+    ($ty:ty, $($field:ident),* $(,)?) => {
+        vec![$((stringify!($field).to_string(), offset_of!($ty, $field) as u32)),*]
+    };
+}
+
+#[test]
+fn params_match_the_wgsl_struct() {
+    let (members, span) = wgsl_layout(&module(), "Params");
+    let rust = rust_offsets!(
+        Params,
+        position,
+        orthographic,
+        right,
+        pixel,
+        up,
+        half_width,
+        direction,
+        half_height,
+        bounds_min,
+        eye_inside,
+        bounds_max,
+        scene_abs_max,
+        width,
+        height,
+        max_steps,
+        method,
+        stop_below_sum,
+        grey,
+        split,
+        knot_count,
+        psi_size,
+        inv_unit_distance,
+        riemann_step,
+        preint_size,
+        preint_offset,
+        preint_lo,
+        preint_scale,
+        preint_length,
+        tet_chunk,
+        point_chunk,
+        prim_offset,
+        face_offset,
+    );
+    assert_eq!(members, rust, "member names and offsets");
+    assert_eq!(span as usize, size_of::<Params>());
+}
+
+#[test]
+fn tile_matches_the_wgsl_struct() {
+    let (members, span) = wgsl_layout(&module(), "Tile");
+    assert_eq!(members, rust_offsets!(Tile, x0, y0, width, height));
+    assert_eq!(span as usize, size_of::<Tile>());
+}
+
+#[test]
+fn bvh_records_are_the_kernel_entries() {
+    // FlatNode is two vec4<u32> (min.xyz + index, max.xyz + count), FlatPrim
+    // one: the kernel reads them by those offsets.
+    use tetray_boundary_bvh::{FlatNode, FlatPrim};
+    assert_eq!(size_of::<FlatNode>(), 32);
+    assert_eq!(offset_of!(FlatNode, index), 12);
+    assert_eq!(offset_of!(FlatNode, count), 28);
+    assert_eq!(size_of::<FlatPrim>(), 16);
+    assert_eq!(offset_of!(FlatPrim, face), 12);
+}
