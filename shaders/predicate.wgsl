@@ -43,59 +43,122 @@ fn project(ray: Ray, p: vec3<f32>) -> vec3<f32> {
     );
 }
 
-// The high 12 significant bits of `x` (by masking, so no rounding and no
-// compiler contraction can touch it); `x - hi` is exact.
-fn split_high(x: f32) -> f32 {
-    return bitcast<f32>(bitcast<u32>(x) & 0xfffff000u);
+// Exact products in integers: the float pipeline of a driver may reorder
+// or fuse additions (SPIR-V from WGSL carries no "exact" marks), which
+// would break float error-free transformations; integer arithmetic it
+// cannot touch.
+
+// |x| = m * 2^(e - 150): the significand as an integer and the exponent.
+struct Unpacked {
+    m: u32,
+    e: i32,
+    negative: bool,
 }
 
-// `(s, e)` with `s + e = a + b` exactly (Knuth's TwoSum).
-fn two_sum(a: f32, b: f32) -> vec2<f32> {
-    let s = a + b;
-    let bv = s - a;
-    let av = s - bv;
-    return vec2<f32>(s, (a - av) + (b - bv));
-}
-
-// The exact sign of `ax * by - ay * bx`: each product is the sum of four
-// exact products of 12-bit halves, and the eight terms are summed into a
-// non-overlapping expansion (Shewchuk's grow-expansion) whose most
-// significant non-zero component carries the sign.
-fn det_sign_exact(ax: f32, ay: f32, bx: f32, by: f32) -> i32 {
-    let axh = split_high(ax);
-    let axl = ax - axh;
-    let ayh = split_high(ay);
-    let ayl = ay - ayh;
-    let bxh = split_high(bx);
-    let bxl = bx - bxh;
-    let byh = split_high(by);
-    let byl = by - byh;
-    var terms = array<f32, 8>(
-        axh * byh, axh * byl, axl * byh, axl * byl,
-        -(ayh * bxh), -(ayh * bxl), -(ayl * bxh), -(ayl * bxl),
-    );
-    var expansion: array<f32, 8>;
-    var len = 0u;
-    for (var i = 0u; i < 8u; i++) {
-        var q = terms[i];
-        for (var j = 0u; j < len; j++) {
-            let r = two_sum(q, expansion[j]);
-            q = r.x;
-            expansion[j] = r.y;
-        }
-        expansion[len] = q;
-        len++;
+fn unpack(x: f32) -> Unpacked {
+    let bits = bitcast<u32>(x);
+    let biased = (bits >> 23u) & 0xffu;
+    var m = bits & 0x7fffffu;
+    var e = i32(biased);
+    if (biased == 0u) {
+        // Subnormal (or zero): no implicit bit, the smallest exponent.
+        e = 1;
+    } else {
+        m |= 0x800000u;
     }
-    for (var k = 8u; k > 0u; k--) {
-        let c = expansion[k - 1u];
-        if (c > 0.0) {
-            return 1;
-        }
-        if (c < 0.0) {
-            return -1;
-        }
+    return Unpacked(m, e, (bits >> 31u) == 1u);
+}
+
+// The exact 48-bit product of two 24-bit integers as (high, low) words.
+fn mul48(a: u32, b: u32) -> vec2<u32> {
+    let a1 = a >> 12u;
+    let a0 = a & 0xfffu;
+    let b1 = b >> 12u;
+    let b0 = b & 0xfffu;
+    let high_part = a1 * b1;
+    let middle = a1 * b0 + a0 * b1;
+    let low_part = a0 * b0;
+    // high_part << 24 + middle << 12 + low_part, with carries.
+    let lo1 = low_part + (middle << 12u);
+    let carry1 = select(0u, 1u, lo1 < low_part);
+    let lo2 = lo1 + (high_part << 24u);
+    let carry2 = select(0u, 1u, lo2 < lo1);
+    return vec2<u32>((middle >> 20u) + (high_part >> 8u) + carry1 + carry2, lo2);
+}
+
+// |x y| as (exponent, high, low) with the leading bit of the 64-bit
+// significand at bit 47, comparable lexicographically; (-huge, 0, 0) for 0.
+struct Magnitude {
+    e: i32,
+    hi: u32,
+    lo: u32,
+    zero: bool,
+    negative: bool,
+}
+
+fn product_magnitude(x: f32, y: f32) -> Magnitude {
+    let a = unpack(x);
+    let b = unpack(y);
+    var p = mul48(a.m, b.m);
+    var out: Magnitude;
+    out.negative = a.negative != b.negative;
+    out.zero = p.x == 0u && p.y == 0u;
+    if (out.zero) {
+        out.e = -100000;
+        out.hi = 0u;
+        out.lo = 0u;
+        return out;
+    }
+    var lz: u32;
+    if (p.x != 0u) {
+        lz = countLeadingZeros(p.x);
+    } else {
+        lz = 32u + countLeadingZeros(p.y);
+    }
+    // Shift left so the leading bit is bit 47 (bit 15 of the high word).
+    let shift = lz - 16u;
+    if (shift >= 32u) {
+        p = vec2<u32>(p.y << (shift - 32u), 0u);
+    } else if (shift > 0u) {
+        p = vec2<u32>((p.x << shift) | (p.y >> (32u - shift)), p.y << shift);
+    }
+    out.e = a.e + b.e - i32(shift);
+    out.hi = p.x;
+    out.lo = p.y;
+    return out;
+}
+
+// -1, 0 or 1 as |p| is below, equal to or above |q|.
+fn compare_magnitudes(p: Magnitude, q: Magnitude) -> i32 {
+    if (p.e != q.e) {
+        return select(-1, 1, p.e > q.e);
+    }
+    if (p.hi != q.hi) {
+        return select(-1, 1, p.hi > q.hi);
+    }
+    if (p.lo != q.lo) {
+        return select(-1, 1, p.lo > q.lo);
     }
     return 0;
+}
+
+// The exact sign of `ax * by - ay * bx`: both products exactly, as
+// integers, then compared.
+fn det_sign_exact(ax: f32, ay: f32, bx: f32, by: f32) -> i32 {
+    let p = product_magnitude(ax, by);
+    let q = product_magnitude(ay, bx);
+    let sp = select(select(1, -1, p.negative), 0, p.zero);
+    let sq = select(select(1, -1, q.negative), 0, q.zero);
+    if (sq == 0) {
+        return sp;
+    }
+    if (sp == 0) {
+        return -sq;
+    }
+    if (sp != sq) {
+        return sp;
+    }
+    return sp * compare_magnitudes(p, q);
 }
 
 // The exact sign of `ax * by - ay * bx`. Rounded in f32 (fused or not) the

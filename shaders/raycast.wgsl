@@ -27,6 +27,8 @@ const APEX_EXITS = array<u32, 32>(
 );
 // "Unbounded" distances (WGSL has no infinity literal).
 const FAR: f32 = 3.4e38;
+// 2^-20 (tetray_boundary_bvh::REENTRY_REL).
+const REENTRY_REL: f32 = 9.5367431640625e-7;
 
 // The current tetrahedron in the frame of the ray: projected vertices and
 // their scalars.
@@ -135,7 +137,15 @@ fn cast_ray(px: u32, py: u32) -> Pixel {
     var skip_t = 0.0;
     var done = false;
     for (var entry_count = 0u; entry_count < params.max_steps && !done; entry_count++) {
-        let entry = first_entry(ray, t_cursor, FAR, skip);
+        // Re-entries start a little before the exit: the exit distance and
+        // a coincident face's entry distance round differently
+        // (tetray_boundary_bvh::REENTRY_REL).
+        var t_query = t_cursor;
+        if (counters.entries > 0u) {
+            let o = abs(ray.origin);
+            t_query = t_cursor - REENTRY_REL * (params.scene_abs_max + max(max(o.x, o.y), o.z));
+        }
+        let entry = first_entry(ray, t_query, FAR, skip);
         if (!entry.found) {
             break;
         }

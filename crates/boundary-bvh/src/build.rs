@@ -132,6 +132,11 @@ impl BoundaryBvh {
     }
 
     /// Number of boundary faces indexed.
+    /// Largest coordinate magnitude of any boundary point.
+    pub fn scene_abs_max(&self) -> f32 {
+        self.scene_abs_max
+    }
+
     pub fn face_count(&self) -> usize {
         self.stats.faces
     }

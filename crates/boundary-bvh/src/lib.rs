@@ -63,6 +63,22 @@ pub enum BvhError {
     UnknownPreset(String),
 }
 
+/// Relative slack of a re-entry query: a ray that leaves the mesh at
+/// distance `t` asks for entries from `t - REENTRY_REL * (S + |origin|)`
+/// on (`S`: the largest boundary coordinate magnitude). The exit distance
+/// (from the walk's weights) and the entry distance of a coincident face
+/// (from the face's own weights) are rounded differently; without the
+/// slack a seam crossed at a rounding-unlucky distance would be missed. No
+/// other face can enter that close before an exit in a mesh whose parts
+/// do not overlap, and the walk never integrates backwards.
+pub const REENTRY_REL: f32 = 1.0 / 1_048_576.0;
+
+/// The distance a re-entry query starts from after leaving at `t_exit`.
+#[inline]
+pub fn reentry_start(ray: &watertight::RayFrame, t_exit: f32, scene_abs_max: f32) -> f32 {
+    t_exit - REENTRY_REL * (scene_abs_max + ray.origin.abs().max_element())
+}
+
 /// A ray with a non-finite origin or direction, or a NaN range, crosses
 /// nothing by contract (its distances would be meaningless).
 #[inline]

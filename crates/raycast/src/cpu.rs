@@ -220,6 +220,63 @@ pub fn render_scalar_with_progress(
     })
 }
 
+/// What one ray did, from [`trace_pixel`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct RayTrace {
+    pub segments: u64,
+    pub steps: u64,
+    pub entries: u64,
+    pub step_bound_hit: bool,
+    pub walk_failure: bool,
+}
+
+/// The ray of one pixel of a `opts.width x opts.height` frame, traced
+/// alone: its premultiplied RGBA and what it did (for inspecting a pixel).
+pub fn trace_pixel<I: SegmentIntegrator + ?Sized>(
+    scene: &Scene,
+    camera: &Camera,
+    integrator: &I,
+    opts: &RenderOptions,
+    x: u32,
+    y: u32,
+) -> Result<([f32; 4], RayTrace), RenderError> {
+    let rays = camera.pixel_rays(opts.width, opts.height)?;
+    let (lo, hi) = scene.bounds();
+    let frame = Frame {
+        scene,
+        rays: &rays,
+        integrator,
+        limits: WalkLimits {
+            stop_below_sum: 3.0 * (1.0 - opts.early_termination),
+            max_steps: opts
+                .max_steps_per_ray
+                .map_or(scene.tet_count() as u64 + 1024, u64::from),
+        },
+        orthographic: camera.parallel_scale.is_some(),
+        eye_inside: camera.is_inside_bounds(lo, hi),
+        bounds: (lo, hi),
+        progress: None,
+        rows_done: AtomicUsize::new(0),
+        width: opts.width as usize,
+        height: opts.height as usize,
+    };
+    let mut walker = Walker::new();
+    frame.start(&mut walker, x as usize, y as usize);
+    while walker.advance(scene, integrator, frame.limits) {}
+    let (light, c) = (walker.light, walker.counters);
+    let alpha = 1.0 - light.transmittance.element_sum() / 3.0;
+    Ok((
+        [light.color.x, light.color.y, light.color.z, alpha],
+        RayTrace {
+            segments: c.segments,
+            steps: c.steps,
+            entries: c.entries,
+            step_bound_hit: c.step_bound_hit,
+            walk_failure: c.walk_failure,
+        },
+    ))
+}
+
 /// Everything the workers share for one frame.
 struct Frame<'a, I: ?Sized> {
     scene: &'a Scene,

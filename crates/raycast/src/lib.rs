@@ -17,9 +17,9 @@ mod walk;
 
 pub use camera::{Camera, CameraError, PixelRays, ViewBasis};
 pub use cpu::{
-    render_cpu, render_cpu_with_progress, render_scalar, render_scalar_with_progress, RenderError,
-    RenderOptions, RenderOutput, RenderStats,
+    render_cpu, render_cpu_with_progress, render_scalar, render_scalar_with_progress, trace_pixel,
+    RayTrace, RenderError, RenderOptions, RenderOutput, RenderStats,
 };
 pub use image::{Image, ImageError};
 pub use scene::{Scene, SceneError, WalkTet, FINAL_EXIT};
-pub use walk::SegmentIntegrator;
+pub use walk::{packed_exit_table, SegmentIntegrator};

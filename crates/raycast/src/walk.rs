@@ -4,6 +4,7 @@
 //! transmittances and a sum of attenuated segment emissions).
 
 use glam::{Vec3, Vec3A};
+use tetray_boundary_bvh::reentry_start;
 use tetray_boundary_bvh::watertight::{crossing_barycentric, edge_sign, RayFrame, RayPoint};
 use tetray_mesh::FACE_VERTICES;
 
@@ -81,6 +82,17 @@ struct ApexTable {
 }
 
 const APEX_TABLES: [ApexTable; 4] = apex_tables();
+
+/// The exit table packed as the GPU kernel stores it: for apex `a` and sign
+/// code `c`, `face | next << 4 | prev << 8`, or `0xffff` for none.
+pub fn packed_exit_table() -> [[u32; 8]; 4] {
+    std::array::from_fn(|apex| {
+        std::array::from_fn(|code| match APEX_TABLES[apex].exits[code] {
+            Some((f, next, prev)) => (f | next << 4 | prev << 8) as u32,
+            None => 0xffff,
+        })
+    })
+}
 
 /// The exit face has all three edge signs positive. Its edge on the entry
 /// face is already positive (adjacent faces run a shared edge in opposite
@@ -338,9 +350,15 @@ impl<S: Copy> Walker<S> {
     }
 
     fn enter<I: SegmentIntegrator<Sample = S> + ?Sized>(&mut self, scene: &Scene, integrator: &I) {
+        // Re-entries start a little before the exit (see REENTRY_REL).
+        let t_query = if self.counters.entries > 0 {
+            reentry_start(&self.ray, self.t_cursor, scene.bvh.scene_abs_max())
+        } else {
+            self.t_cursor
+        };
         let Some(hit) = scene
             .bvh
-            .first_entry(&self.ray, self.t_cursor, f32::INFINITY, &self.skip)
+            .first_entry(&self.ray, t_query, f32::INFINITY, &self.skip)
         else {
             self.phase = Phase::Done;
             return;

@@ -77,6 +77,29 @@ pub fn render(
     Ok((Image::from_pixels(opts.width, opts.height, rgba)?, totals))
 }
 
+/// One pixel of a frame, as the kernel casts it: premultiplied RGBA and
+/// the pixel's counters (for inspecting a pixel).
+pub fn trace_pixel(
+    scene: &SceneData,
+    integrator: &IntegratorData,
+    camera: &Camera,
+    opts: &GpuRenderOptions,
+    x: u32,
+    y: u32,
+) -> Result<([f32; 4], [u64; STAT_COUNT]), GpuError> {
+    let params = frame_params(&scene.layout(), integrator, camera, opts)?;
+    let input = Inputs {
+        params: &params,
+        points: &scene.points,
+        tets: &scene.tets,
+        bvh: &scene.bvh,
+        tables: &integrator.tables,
+        psi: &integrator.psi,
+    };
+    let (color, counters) = cast_ray(&input, x, y);
+    Ok((color.to_array(), counters.as_stats()))
+}
+
 const FACE_VERTS: [[usize; 3]; 4] = [[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]];
 const APEX_OTHERS: [[usize; 3]; 4] = [[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]];
 /// The kernel's exit table (checked against the CPU walk's in tests).
@@ -95,6 +118,7 @@ pub const APEX_EXITS: [[u32; 8]; 4] = [
     ],
 ];
 const FAR: f32 = 3.4e38;
+const REENTRY_REL: f32 = tetray_boundary_bvh::REENTRY_REL;
 const NO_EXIT: u32 = 0xffff;
 
 struct Cell {
@@ -108,8 +132,8 @@ fn load_cell(input: &Inputs, ray: &Ray, tet: u32) -> Cell {
         p: [Vec3::ZERO; 4],
         s: Vec4::ZERO,
     };
-    for i in 0..4 {
-        let q = input.point(v[i]);
+    for (i, &vertex) in v.iter().enumerate() {
+        let q = input.point(vertex);
         cell.p[i] = project(ray, q.truncate());
         cell.s[i] = q.w;
     }
@@ -207,7 +231,13 @@ fn cast_ray(input: &Inputs, px: u32, py: u32) -> (Vec4, Counters) {
     let mut entry_count = 0;
     while entry_count < p.max_steps && !done {
         entry_count += 1;
-        let entry = first_entry(input, &ray, t_cursor, FAR, &skip);
+        let t_query = if counters.entries > 0 {
+            let o = ray.origin.abs();
+            t_cursor - REENTRY_REL * (p.scene_abs_max + o.x.max(o.y).max(o.z))
+        } else {
+            t_cursor
+        };
+        let entry = first_entry(input, &ray, t_query, FAR, &skip);
         if !entry.found {
             break;
         }

@@ -39,56 +39,82 @@ pub fn project(ray: &Ray, p: Vec3) -> Vec3 {
     )
 }
 
-fn split_high(x: f32) -> f32 {
-    f32::from_bits(x.to_bits() & 0xffff_f000)
+/// `|x| = m 2^(e - 150)`: significand, exponent, sign.
+fn unpack(x: f32) -> (u32, i32, bool) {
+    let bits = x.to_bits();
+    let biased = (bits >> 23) & 0xff;
+    let m = bits & 0x7f_ffff;
+    if biased == 0 {
+        (m, 1, bits >> 31 == 1)
+    } else {
+        (m | 0x80_0000, biased as i32, bits >> 31 == 1)
+    }
 }
 
-fn two_sum(a: f32, b: f32) -> (f32, f32) {
-    let s = a + b;
-    let bv = s - a;
-    let av = s - bv;
-    (s, (a - av) + (b - bv))
+/// The exact 48-bit product as (high, low) words, assembled from 12-bit
+/// halves with 32-bit wrapping arithmetic, as the kernel does.
+fn mul48(a: u32, b: u32) -> (u32, u32) {
+    let (a1, a0, b1, b0) = (a >> 12, a & 0xfff, b >> 12, b & 0xfff);
+    let high_part = a1 * b1;
+    let middle = a1 * b0 + a0 * b1;
+    let low_part = a0 * b0;
+    let lo1 = low_part.wrapping_add(middle << 12);
+    let carry1 = u32::from(lo1 < low_part);
+    let lo2 = lo1.wrapping_add(high_part << 24);
+    let carry2 = u32::from(lo2 < lo1);
+    ((middle >> 20) + (high_part >> 8) + carry1 + carry2, lo2)
 }
 
-/// The exact sign of `ax * by - ay * bx` from the split products summed
-/// into a non-overlapping expansion.
+/// `|x y|` as (exponent, high, low) normalised to bit 47, or `None` for 0;
+/// and whether the product is negative.
+fn product_magnitude(x: f32, y: f32) -> (Option<(i32, u32, u32)>, bool) {
+    let (ma, ea, na) = unpack(x);
+    let (mb, eb, nb) = unpack(y);
+    let (hi, lo) = mul48(ma, mb);
+    if hi == 0 && lo == 0 {
+        return (None, na != nb);
+    }
+    let lz = if hi != 0 {
+        hi.leading_zeros()
+    } else {
+        32 + lo.leading_zeros()
+    };
+    let shift = lz - 16;
+    let (hi, lo) = if shift >= 32 {
+        (lo << (shift - 32), 0)
+    } else if shift > 0 {
+        ((hi << shift) | (lo >> (32 - shift)), lo << shift)
+    } else {
+        (hi, lo)
+    };
+    (Some((ea + eb - shift as i32, hi, lo)), na != nb)
+}
+
+/// The exact sign of `ax * by - ay * bx`: both products exactly as
+/// integers, then compared (the kernel's rule, in the same steps).
 pub fn det_sign_exact(ax: f32, ay: f32, bx: f32, by: f32) -> i32 {
-    let (axh, ayh, bxh, byh) = (
-        split_high(ax),
-        split_high(ay),
-        split_high(bx),
-        split_high(by),
-    );
-    let (axl, ayl, bxl, byl) = (ax - axh, ay - ayh, bx - bxh, by - byh);
-    let terms = [
-        axh * byh,
-        axh * byl,
-        axl * byh,
-        axl * byl,
-        -(ayh * bxh),
-        -(ayh * bxl),
-        -(ayl * bxh),
-        -(ayl * bxl),
-    ];
-    let mut expansion = [0.0f32; 8];
-    for (len, &term) in terms.iter().enumerate() {
-        let mut q = term;
-        for component in expansion.iter_mut().take(len) {
-            let (s, e) = two_sum(q, *component);
-            q = s;
-            *component = e;
-        }
-        expansion[len] = q;
+    let (p, p_negative) = product_magnitude(ax, by);
+    let (q, q_negative) = product_magnitude(ay, bx);
+    let sign = |m: &Option<(i32, u32, u32)>, negative: bool| match m {
+        None => 0,
+        Some(_) if negative => -1,
+        Some(_) => 1,
+    };
+    let (sp, sq) = (sign(&p, p_negative), sign(&q, q_negative));
+    if sq == 0 {
+        return sp;
     }
-    for &c in expansion.iter().rev() {
-        if c > 0.0 {
-            return 1;
-        }
-        if c < 0.0 {
-            return -1;
-        }
+    if sp == 0 {
+        return -sq;
     }
-    0
+    if sp != sq {
+        return sp;
+    }
+    match p.cmp(&q) {
+        std::cmp::Ordering::Less => -sp,
+        std::cmp::Ordering::Equal => 0,
+        std::cmp::Ordering::Greater => sp,
+    }
 }
 
 pub fn det_sign(ax: f32, ay: f32, bx: f32, by: f32, value: f32) -> i32 {
