@@ -129,22 +129,19 @@ pub struct IntegratorArgs {
 /// Which renderer draws the image.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum RendererArg {
+    /// The GPU ray caster on a hardware adapter, else the CPU one.
+    Auto,
     /// The CPU reference ray caster (rayon, one ray per pixel).
     Cpu,
-}
-
-impl RendererArg {
-    pub fn name(self) -> &'static str {
-        match self {
-            RendererArg::Cpu => "cpu",
-        }
-    }
+    /// The wgpu compute ray caster (the adapter from WGPU_ADAPTER_NAME /
+    /// WGPU_BACKEND, else the default).
+    Gpu,
 }
 
 /// The renderer and its walk limits.
 #[derive(Debug, Clone, Args)]
 pub struct WalkArgs {
-    #[arg(long, value_enum, default_value_t = RendererArg::Cpu)]
+    #[arg(long, value_enum, default_value_t = RendererArg::Auto)]
     pub renderer: RendererArg,
     /// Stop a ray once its opacity reaches A, in (0, 1]; 1 disables early
     /// termination (the default: the reference renderer integrates

@@ -1,14 +1,11 @@
 //! `tetray bench`: frame times over an orbit of the camera, as JSON.
 
-use std::time::Instant;
-
+use super::args::{parse_finite, parse_size, CameraArgs, IntegratorArgs, MeshArgs, WalkArgs};
+use super::renderer::{Engine, FrameStats};
+use super::{render, scene};
 use anyhow::Context;
 use clap::Args;
 use serde::Serialize;
-use tetray_raycast::render_scalar;
-
-use super::args::{parse_finite, parse_size, CameraArgs, IntegratorArgs, MeshArgs, WalkArgs};
-use super::{render, scene};
 
 /// `tetray bench`.
 #[derive(Debug, Clone, Args)]
@@ -37,6 +34,8 @@ pub struct BenchArgs {
 struct BenchJson {
     renderer: &'static str,
     adapter: String,
+    /// How frame times were measured.
+    timing: &'static str,
     threads: usize,
     mesh: String,
     tets: usize,
@@ -79,21 +78,24 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     };
     // Progress goes to stderr; stdout holds only the JSON.
     let setup = scene::prepare(frame, &|line| eprintln!("{line}"))?;
+    let engine = Engine::new(args.walk.renderer, &setup, &|line| eprintln!("{line}"))?;
     let mut camera = setup.camera;
-    let options = render::render_options(&args.walk, args.size);
     let orbit_step = args.orbit_step.unwrap_or(360.0 / args.frames as f32);
 
-    // Warm-up: page faults and caches stay out of the timings.
-    render_scalar(&setup.scene, &camera, &setup.integrator, &options).context("warm-up frame")?;
+    // Warm-up: page faults, caches and shader compilation stay out of the
+    // timings.
+    engine
+        .render(&setup, &camera, &args.walk, args.size, None)
+        .context("warm-up frame")?;
     let mut times_ms = Vec::with_capacity(args.frames as usize);
     let (mut rays, mut segments, mut steps) = (0u64, 0u64, 0u64);
     let (mut bound_hits, mut failures) = (0u64, 0u64);
     for frame in 0..args.frames {
-        let start = Instant::now();
-        let output = render_scalar(&setup.scene, &camera, &setup.integrator, &options)
+        let output = engine
+            .render(&setup, &camera, &args.walk, args.size, None)
             .with_context(|| format!("frame {frame}"))?;
-        times_ms.push(start.elapsed().as_secs_f64() * 1e3);
         let stats = output.stats;
+        times_ms.push(stats.elapsed.as_secs_f64() * 1e3);
         rays += stats.rays;
         segments += stats.segments;
         steps += stats.steps;
@@ -104,7 +106,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
             .orthogonalize_view_up()
             .context("orbiting the camera")?;
     }
-    render::warn_about(&tetray_raycast::RenderStats {
+    render::warn_about(&FrameStats {
         steps_bound_hits: bound_hits,
         walk_failures: failures,
         ..Default::default()
@@ -118,8 +120,13 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     let frames = f64::from(args.frames);
     let tets = setup.scene.tet_count();
     let json = BenchJson {
-        renderer: args.walk.renderer.name(),
-        adapter: format!("cpu (rayon), {threads} threads"),
+        renderer: engine.name(),
+        adapter: engine.adapter(),
+        timing: if engine.gpu_timestamps() {
+            "gpu timestamp queries"
+        } else {
+            "wall clock"
+        },
         threads,
         mesh: setup.mesh_name.clone(),
         tets,

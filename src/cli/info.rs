@@ -1,5 +1,6 @@
 //! `tetray info`: counts, bounds, scalar ranges and validation findings.
 
+use anyhow::Context;
 use clap::Args;
 use serde::Serialize;
 use tetray_mesh::MeshSummary;
@@ -15,6 +16,40 @@ pub struct InfoArgs {
     /// Print JSON instead of text.
     #[arg(long)]
     pub json: bool,
+    /// Also describe the GPU adapter the ray caster would use (chosen by
+    /// WGPU_ADAPTER_NAME / WGPU_BACKEND, else the default), and fail if
+    /// there is none.
+    #[arg(long)]
+    pub gpu: bool,
+}
+
+/// What `--gpu` reports of the adapter.
+#[derive(Debug, Serialize)]
+struct AdapterJson {
+    name: String,
+    backend: String,
+    device_type: String,
+    driver: String,
+    driver_info: String,
+    timestamp_queries: bool,
+    max_storage_buffer_binding_size: u64,
+    max_buffer_size: u64,
+    max_compute_workgroups_per_dimension: u32,
+}
+
+fn adapter_json() -> anyhow::Result<AdapterJson> {
+    let ctx = tetray_gpu::GpuContext::new().context("--gpu")?;
+    Ok(AdapterJson {
+        name: ctx.info.name.clone(),
+        backend: format!("{:?}", ctx.info.backend),
+        device_type: format!("{:?}", ctx.info.device_type),
+        driver: ctx.info.driver.clone(),
+        driver_info: ctx.info.driver_info.clone(),
+        timestamp_queries: ctx.timestamps,
+        max_storage_buffer_binding_size: ctx.limits.max_storage_buffer_binding_size,
+        max_buffer_size: ctx.limits.max_buffer_size,
+        max_compute_workgroups_per_dimension: ctx.limits.max_compute_workgroups_per_dimension,
+    })
 }
 
 /// The JSON form of [`MeshSummary`], plus the validation counters.
@@ -43,6 +78,8 @@ struct InfoJson<'a> {
     load_seconds: f64,
     valid: bool,
     warnings: &'a [String],
+    #[serde(skip_serializing_if = "Option::is_none")]
+    adapter: Option<AdapterJson>,
 }
 
 #[derive(Debug, Serialize)]
@@ -59,6 +96,11 @@ struct FieldJson<'a> {
 }
 
 pub fn run(args: &InfoArgs) -> anyhow::Result<()> {
+    let adapter = if args.gpu {
+        Some(adapter_json()?)
+    } else {
+        None
+    };
     // A mesh that fails validation is an error naming the problem (exit 1).
     let input = scene::load_mesh(&args.mesh)?;
     let summary = MeshSummary::new(&input.loaded);
@@ -98,6 +140,7 @@ pub fn run(args: &InfoArgs) -> anyhow::Result<()> {
             load_seconds: input.load_time.as_secs_f64(),
             valid: true,
             warnings: &summary.warnings,
+            adapter,
         };
         println!("{}", serde_json::to_string_pretty(&json)?);
     } else {
@@ -109,6 +152,18 @@ pub fn run(args: &InfoArgs) -> anyhow::Result<()> {
             input.input_cells()
         );
         println!("loaded in:       {:.3} s", input.load_time.as_secs_f64());
+        if let Some(a) = &adapter {
+            println!(
+                "gpu adapter:     {} ({}, {}), driver {} {}",
+                a.name, a.backend, a.device_type, a.driver, a.driver_info
+            );
+            println!(
+                "gpu limits:      storage binding {} MB, buffer {} MB, timestamps {}",
+                a.max_storage_buffer_binding_size >> 20,
+                a.max_buffer_size >> 20,
+                if a.timestamp_queries { "yes" } else { "no" }
+            );
+        }
     }
     Ok(())
 }

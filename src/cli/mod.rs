@@ -5,6 +5,7 @@ mod bench;
 mod info;
 mod psi;
 mod render;
+mod renderer;
 mod scene;
 mod segment;
 

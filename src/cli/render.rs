@@ -3,12 +3,13 @@
 use std::path::Path;
 use std::time::{Duration, Instant};
 
-use anyhow::{bail, Context};
+use anyhow::bail;
 use glam::Vec3;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use tetray_raycast::{render_scalar_with_progress, Image, RenderOptions, RenderStats};
+use tetray_raycast::Image;
 
-use super::args::{RenderArgs, WalkArgs};
+use super::args::RenderArgs;
+use super::renderer::{Engine, FrameStats};
 use super::scene;
 
 /// Renders slower than this get a progress bar (on a terminal).
@@ -34,8 +35,8 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         size,
     };
     let setup = scene::prepare(frame, &|line| println!("{line}"))?;
+    let engine = Engine::new(args.walk.renderer, &setup, &|line| println!("{line}"))?;
 
-    let options = render_options(&args.walk, size);
     let bar = ProgressBar::with_draw_target(Some(u64::from(size.1)), ProgressDrawTarget::hidden());
     bar.set_style(
         ProgressStyle::with_template("rendering [{bar:40}] {pos}/{len} rows, {eta} left")
@@ -49,17 +50,14 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         }
         bar.set_position(rows_done as u64);
     };
-    let frame = render_scalar_with_progress(
-        &setup.scene,
-        &setup.camera,
-        &setup.integrator,
-        &options,
-        Some(&progress),
-    )
-    .context("rendering")?;
+    let frame = engine.render(&setup, &setup.camera, &args.walk, size, Some(&progress))?;
     bar.finish_and_clear();
 
-    println!("{}", describe_stats(&frame.stats, size));
+    println!(
+        "{} on {}",
+        describe_stats(&frame.stats, size),
+        engine.adapter()
+    );
     warn_about(&frame.stats);
     write_image(&frame.image, output, format, args.output.background)?;
     let shown = std::path::absolute(output).unwrap_or_else(|_| output.clone());
@@ -67,20 +65,8 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// The renderer's options from the walk flags.
-pub fn render_options(walk: &WalkArgs, (width, height): (u32, u32)) -> RenderOptions {
-    RenderOptions {
-        width,
-        height,
-        early_termination: walk.early_termination,
-        max_steps_per_ray: walk.max_steps,
-        // The global pool, sized once by --threads.
-        threads: None,
-    }
-}
-
 /// One line of frame statistics.
-pub fn describe_stats(stats: &RenderStats, (width, height): (u32, u32)) -> String {
+pub fn describe_stats(stats: &FrameStats, (width, height): (u32, u32)) -> String {
     let seconds = stats.elapsed.as_secs_f64();
     format!(
         "rendered {width}x{height} in {seconds:.3} s: {} rays, {} hit the mesh, {} segments, \
@@ -90,12 +76,12 @@ pub fn describe_stats(stats: &RenderStats, (width, height): (u32, u32)) -> Strin
         stats.segments,
         stats.steps,
         stats.entries,
-        stats.segments_per_second() / 1e6
+        stats.segments as f64 / seconds.max(1e-12) / 1e6
     )
 }
 
 /// Warnings for rays the walk could not finish.
-pub fn warn_about(stats: &RenderStats) {
+pub fn warn_about(stats: &FrameStats) {
     if stats.steps_bound_hits > 0 {
         eprintln!(
             "warning: {} ray{} hit the step bound and were cut short (raise --max-steps)",

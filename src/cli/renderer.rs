@@ -1,0 +1,204 @@
+//! The renderer behind `render` and `bench`: the CPU reference ray caster
+//! or the GPU one (`--renderer cpu|gpu|auto`).
+
+use std::time::Duration;
+
+use anyhow::{bail, Context};
+use tetray_gpu::{GpuContext, GpuIntegrator, GpuRaycaster, GpuRenderOptions, GpuScene};
+use tetray_raycast::{render_scalar_with_progress, Camera, Image, RenderOptions};
+
+use super::args::{RendererArg, WalkArgs};
+use super::scene::Setup;
+
+/// A ready renderer.
+pub enum Engine {
+    Cpu,
+    Gpu(Box<GpuEngine>),
+}
+
+/// The GPU ray caster with the mesh and integrator uploaded.
+pub struct GpuEngine {
+    ctx: GpuContext,
+    raycaster: GpuRaycaster,
+    scene: GpuScene,
+    integrator: GpuIntegrator,
+}
+
+/// What either renderer reports of a frame.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct FrameStats {
+    pub rays: u64,
+    pub rays_hit: u64,
+    pub segments: u64,
+    pub steps: u64,
+    pub entries: u64,
+    pub steps_bound_hits: u64,
+    pub walk_failures: u64,
+    /// Render time: the GPU pass by timestamp queries where the adapter has
+    /// them, else the wall time of the frame.
+    pub elapsed: Duration,
+}
+
+pub struct Frame {
+    pub image: Image,
+    pub stats: FrameStats,
+}
+
+impl Engine {
+    /// The renderer chosen by `--renderer`. `auto` takes the GPU ray caster
+    /// on a hardware adapter and the CPU one otherwise (no adapter, or a
+    /// CPU implementation such as lavapipe, which the CPU ray caster
+    /// outruns), saying so.
+    pub fn new(choice: RendererArg, setup: &Setup, log: &dyn Fn(String)) -> anyhow::Result<Engine> {
+        let gpu_method = tetray_gpu::layout::method_code(setup.method).is_some();
+        match choice {
+            RendererArg::Cpu => Ok(Engine::Cpu),
+            RendererArg::Gpu => {
+                if !gpu_method {
+                    bail!(
+                        "--integrator {}: the f64 reference has no GPU kernel; use --renderer cpu",
+                        setup.method
+                    );
+                }
+                let ctx = GpuContext::new().context("--renderer gpu")?;
+                Engine::gpu(ctx, setup, log)
+            }
+            RendererArg::Auto => {
+                if !gpu_method {
+                    log(format!(
+                        "renderer: cpu (the {} integrator is CPU only)",
+                        setup.method
+                    ));
+                    return Ok(Engine::Cpu);
+                }
+                match GpuContext::new() {
+                    Ok(ctx) if !ctx.is_cpu() => Engine::gpu(ctx, setup, log),
+                    Ok(ctx) => {
+                        log(format!(
+                            "renderer: cpu (the adapter {} is a CPU implementation; \
+                             --renderer gpu uses it anyway)",
+                            ctx.adapter_name()
+                        ));
+                        Ok(Engine::Cpu)
+                    }
+                    Err(e) => {
+                        log(format!("renderer: cpu ({e})"));
+                        Ok(Engine::Cpu)
+                    }
+                }
+            }
+        }
+    }
+
+    fn gpu(ctx: GpuContext, setup: &Setup, log: &dyn Fn(String)) -> anyhow::Result<Engine> {
+        log(format!("renderer: gpu on {}", ctx.adapter_name()));
+        let raycaster = GpuRaycaster::new(&ctx).context("compiling the GPU kernel")?;
+        let scene = GpuScene::new(&ctx, &setup.scene).context("uploading the mesh to the GPU")?;
+        let integrator = GpuIntegrator::new(&ctx, &setup.integrator)
+            .context("uploading the transfer function to the GPU")?;
+        log(format!(
+            "uploaded {} tetrahedra ({:.1} MB, {:.1} bytes per tetrahedron)",
+            scene.tet_count(),
+            scene.bytes() as f64 / 1e6,
+            scene.bytes() as f64 / scene.tet_count().max(1) as f64
+        ));
+        Ok(Engine::Gpu(Box::new(GpuEngine {
+            ctx,
+            raycaster,
+            scene,
+            integrator,
+        })))
+    }
+
+    /// "cpu" or "gpu".
+    pub fn name(&self) -> &'static str {
+        match self {
+            Engine::Cpu => "cpu",
+            Engine::Gpu(_) => "gpu",
+        }
+    }
+
+    /// The device the frames run on.
+    pub fn adapter(&self) -> String {
+        match self {
+            Engine::Cpu => format!("cpu (rayon), {} threads", rayon::current_num_threads()),
+            Engine::Gpu(gpu) => gpu.ctx.adapter_name(),
+        }
+    }
+
+    /// Whether frame times come from GPU timestamp queries.
+    pub fn gpu_timestamps(&self) -> bool {
+        matches!(self, Engine::Gpu(gpu) if gpu.ctx.timestamps)
+    }
+
+    /// One frame of `setup` from `camera`.
+    pub fn render(
+        &self,
+        setup: &Setup,
+        camera: &Camera,
+        walk: &WalkArgs,
+        (width, height): (u32, u32),
+        progress: Option<&(dyn Fn(usize, usize) + Sync)>,
+    ) -> anyhow::Result<Frame> {
+        match self {
+            Engine::Cpu => {
+                let options = RenderOptions {
+                    width,
+                    height,
+                    early_termination: walk.early_termination,
+                    max_steps_per_ray: walk.max_steps,
+                    // The global pool, sized once by --threads.
+                    threads: None,
+                };
+                let out = render_scalar_with_progress(
+                    &setup.scene,
+                    camera,
+                    &setup.integrator,
+                    &options,
+                    progress,
+                )
+                .context("rendering")?;
+                let s = out.stats;
+                Ok(Frame {
+                    image: out.image,
+                    stats: FrameStats {
+                        rays: s.rays,
+                        rays_hit: s.rays_hit,
+                        segments: s.segments,
+                        steps: s.steps,
+                        entries: s.entries,
+                        steps_bound_hits: s.steps_bound_hits,
+                        walk_failures: s.walk_failures,
+                        elapsed: s.elapsed,
+                    },
+                })
+            }
+            Engine::Gpu(gpu) => {
+                let options = GpuRenderOptions {
+                    width,
+                    height,
+                    early_termination: walk.early_termination,
+                    max_steps_per_ray: walk.max_steps,
+                };
+                let out = gpu
+                    .raycaster
+                    .render(&gpu.ctx, &gpu.scene, &gpu.integrator, camera, &options)
+                    .context("rendering on the GPU")?;
+                let s = out.stats;
+                Ok(Frame {
+                    image: out.image,
+                    stats: FrameStats {
+                        rays: s.rays,
+                        rays_hit: s.rays_hit,
+                        segments: s.segments,
+                        steps: s.steps,
+                        entries: s.entries,
+                        steps_bound_hits: s.steps_bound_hits,
+                        walk_failures: s.walk_failures,
+                        elapsed: s.frame_time(),
+                    },
+                })
+            }
+        }
+    }
+}
