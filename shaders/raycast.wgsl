@@ -30,29 +30,39 @@ const FAR: f32 = 3.4e38;
 // 2^-20 (tetray_boundary_bvh::REENTRY_REL).
 const REENTRY_REL: f32 = 9.5367431640625e-7;
 
-// The current tetrahedron in the frame of the ray: projected vertices and
-// their scalars.
+// The current tetrahedron in the frame of the ray: per vertex its
+// projection (x, y across the ray, z along it) and its scalar in w. Four
+// named registers, picked by `vertex` with selects: dynamically indexed
+// local arrays would live in (slow) local memory on many GPUs.
 struct Cell {
-    p: array<vec3<f32>, 4>,
-    s: vec4<f32>,
+    v0: vec4<f32>,
+    v1: vec4<f32>,
+    v2: vec4<f32>,
+    v3: vec4<f32>,
+}
+
+fn vertex(cell: Cell, i: u32) -> vec4<f32> {
+    return select(select(select(cell.v0, cell.v1, i == 1u), cell.v2, i == 2u), cell.v3, i == 3u);
+}
+
+fn load_vertex(ray: Ray, index: u32) -> vec4<f32> {
+    let q = point_at(index);
+    return vec4<f32>(project(ray, q.xyz), q.w);
 }
 
 fn load_cell(ray: Ray, tet: u32) -> Cell {
     let v = tet_verts(tet);
-    var cell: Cell;
-    for (var i = 0u; i < 4u; i++) {
-        let q = point_at(v[i]);
-        cell.p[i] = project(ray, q.xyz);
-        cell.s[i] = q.w;
-    }
-    return cell;
+    return Cell(load_vertex(ray, v.x), load_vertex(ray, v.y), load_vertex(ray, v.z), load_vertex(ray, v.w));
 }
 
 // Scalar where the ray crosses face f.
 fn face_scalar(cell: Cell, f: u32) -> f32 {
     let v = FACE_VERTS[f];
-    let x = crossing(cell.p[v.x], cell.p[v.y], cell.p[v.z]);
-    return dot(x.weights, vec3<f32>(cell.s[v.x], cell.s[v.y], cell.s[v.z]));
+    let a = vertex(cell, v.x);
+    let b = vertex(cell, v.y);
+    let c = vertex(cell, v.z);
+    let x = crossing(a.xyz, b.xyz, c.xyz);
+    return dot(x.weights, vec3<f32>(a.w, b.w, c.w));
 }
 
 struct Exit {
@@ -65,32 +75,40 @@ struct Exit {
 // Leaves a cell entered through f_in: the exit face, the distance to it and
 // the scalar there.
 fn exit_cell(cell: Cell, f_in: u32) -> Exit {
-    let apex = f_in;
-    let others = APEX_OTHERS[apex];
-    let pa = cell.p[apex];
-    var e: vec4<f32>;
+    let others = APEX_OTHERS[f_in];
+    let pa = vertex(cell, f_in);
+    let p0 = vertex(cell, others.x);
+    let p1 = vertex(cell, others.y);
+    let p2 = vertex(cell, others.z);
+    // Edge functions apex -> each other vertex, and their exact signs.
+    let e = vec3<f32>(edge_value(pa.xyz, p0.xyz), edge_value(pa.xyz, p1.xyz), edge_value(pa.xyz, p2.xyz));
     var code = 0u;
-    for (var i = 0u; i < 3u; i++) {
-        let k = others[i];
-        let value = edge_value(pa, cell.p[k]);
-        e[k] = value;
-        if (edge_sign_of(pa, cell.p[k], value) > 0) {
-            code |= 1u << i;
-        }
+    if (edge_sign_of(pa.xyz, p0.xyz, e.x) > 0) {
+        code |= 1u;
     }
-    let packed = APEX_EXITS[8u * apex + code];
+    if (edge_sign_of(pa.xyz, p1.xyz, e.y) > 0) {
+        code |= 2u;
+    }
+    if (edge_sign_of(pa.xyz, p2.xyz, e.z) > 0) {
+        code |= 4u;
+    }
+    let packed = APEX_EXITS[8u * f_in + code];
     if (packed == 0xffffu) {
         return Exit(false, 0u, 0.0, 0.0);
     }
     let f = packed & 0xfu;
     let next = (packed >> 4u) & 0xfu;
     let prev = (packed >> 8u) & 0xfu;
+    let pn = vertex(cell, next);
+    let pp = vertex(cell, prev);
+    // The apex edge functions of next and prev (which of the three).
+    let e_next = select(select(e.x, e.y, next == others.y), e.z, next == others.z);
+    let e_prev = select(select(e.x, e.y, prev == others.y), e.z, prev == others.z);
     // Weights of (apex, next, prev): the edge functions of the opposite
     // edges, ef(prev, apex) = -ef(apex, prev).
-    let w = vec3<f32>(edge_value(cell.p[next], cell.p[prev]), -e[prev], e[next]);
-    let z = vec3<f32>(pa.z, cell.p[next].z, cell.p[prev].z);
-    let x = crossing_from(w, z);
-    let s = dot(x.weights, vec3<f32>(cell.s[apex], cell.s[next], cell.s[prev]));
+    let w = vec3<f32>(edge_value(pn.xyz, pp.xyz), -e_prev, e_next);
+    let x = crossing_from(w, vec3<f32>(pa.z, pn.z, pp.z));
+    let s = dot(x.weights, vec3<f32>(pa.w, pn.w, pp.w));
     return Exit(true, f, x.t, s);
 }
 

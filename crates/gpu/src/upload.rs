@@ -107,9 +107,30 @@ impl GpuScene {
     }
 
     pub fn upload(ctx: &GpuContext, data: &SceneData) -> Result<GpuScene, GpuError> {
+        let limit = ctx
+            .limits
+            .max_storage_buffer_binding_size
+            .min(ctx.limits.max_buffer_size);
+        GpuScene::upload_with_binding_limits(ctx, data, limit, limit)
+    }
+
+    /// [`GpuScene::upload`] with the tetrahedron and the point array split
+    /// at the given bytes per binding (at most the adapter's), as a mesh
+    /// larger than one binding is; for testing the split on small meshes.
+    pub fn upload_with_binding_limits(
+        ctx: &GpuContext,
+        data: &SceneData,
+        tet_limit: u64,
+        point_limit: u64,
+    ) -> Result<GpuScene, GpuError> {
         let limits = &ctx.limits;
-        let (tets, tet_chunk) = chunked(ctx, "tetrahedra", &data.tets, 2)?;
-        let (points, point_chunk) = chunked(ctx, "points", &data.points, 1)?;
+        let cap = |limit: u64| {
+            limit
+                .min(limits.max_storage_buffer_binding_size)
+                .min(limits.max_buffer_size)
+        };
+        let (tets, tet_chunk) = chunked(ctx, "tetrahedra", &data.tets, 2, cap(tet_limit))?;
+        let (points, point_chunk) = chunked(ctx, "points", &data.points, 1, cap(point_limit))?;
         let bvh_bytes = std::mem::size_of_val(data.bvh.as_slice()) as u64;
         if bvh_bytes > limits.max_storage_buffer_binding_size {
             return Err(GpuError::TooLarge {
@@ -185,11 +206,8 @@ fn chunked<T: Pod>(
     what: &'static str,
     items: &[T],
     per_element: usize,
+    limit: u64,
 ) -> Result<([wgpu::Buffer; 2], u32), GpuError> {
-    let limit = ctx
-        .limits
-        .max_storage_buffer_binding_size
-        .min(ctx.limits.max_buffer_size);
     let element_bytes = (std::mem::size_of::<T>() * per_element) as u64;
     let elements = items.len() / per_element;
     let per_chunk = (limit / element_bytes) as usize;
