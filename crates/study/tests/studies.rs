@@ -1,0 +1,180 @@
+//! Every study at a small size: the files exist, parse as what they claim,
+//! and the numbers say what the dissertation says (and what the integrate
+//! crate's own tests pin down). GPU halves run on whatever adapter exists;
+//! with `TETRAY_REQUIRE_GPU=1` a missing adapter is a failure.
+
+use std::path::{Path, PathBuf};
+
+use tetray_study::accuracy::{self, AccuracyOptions, Device};
+use tetray_study::psi_study::{self, Lookup, PsiOptions};
+use tetray_study::{failed, OutputDir};
+
+fn out_dir(name: &str) -> OutputDir {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join("study")
+        .join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    OutputDir::create(&dir).expect("output folder")
+}
+
+fn quiet(_: &str) {}
+
+/// Each expected file exists; SVGs are whole documents with a title, CSVs
+/// have a header and rows, JSON parses.
+fn assert_files(out: &OutputDir, names: &[&str]) {
+    for name in names {
+        let path = out.path().join(name);
+        assert!(out.files().contains(&path), "{name} not reported");
+        let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{name}: {e}"));
+        match Path::new(name).extension().and_then(|e| e.to_str()) {
+            Some("svg") => {
+                assert!(
+                    text.starts_with("<svg") && text.trim_end().ends_with("</svg>"),
+                    "{name}"
+                );
+                assert!(
+                    text.matches("<text").count() >= 4,
+                    "{name}: titles and labels"
+                );
+            }
+            Some("csv") => assert!(text.lines().count() >= 2, "{name}: no rows"),
+            Some("json") => {
+                serde_json::from_str::<serde_json::Value>(&text)
+                    .unwrap_or_else(|e| panic!("{name}: {e}"));
+            }
+            _ => {}
+        }
+    }
+}
+
+fn gpu_required() -> bool {
+    std::env::var("TETRAY_REQUIRE_GPU").as_deref() == Ok("1")
+}
+
+#[test]
+fn psi_study_small() {
+    let mut out = out_dir("psi");
+    let options = PsiOptions {
+        table_sizes: vec![16, 64],
+        grid: 48,
+        cells: 100,
+    };
+    let summary = psi_study::run(&options, &mut out, &quiet).unwrap();
+    assert_files(
+        &out,
+        &[
+            "psi_surface.svg",
+            "psi_error_uniform_nearest.svg",
+            "psi_error_uniform_bilinear.svg",
+            "psi_error_quadratic_nearest.svg",
+            "psi_error_quadratic_bilinear.svg",
+            "psi_cumulative.svg",
+            "psi_error_by_size.svg",
+            "psi_errors.csv",
+            "psi_grid.csv",
+            "psi.json",
+        ],
+    );
+    assert_eq!(summary.tables.len(), 8);
+    assert!(
+        failed(&summary.checks).is_empty(),
+        "{:?}",
+        failed(&summary.checks)
+    );
+    for t in &summary.tables {
+        // Sane magnitudes: a table error is a fraction of Psi's range.
+        assert!(t.max_error > 0.0 && t.max_error < 0.5, "{t:?}");
+        assert!(t.mean_error <= t.max_error);
+        // Through 100 cells at most 100 times one cell's error.
+        assert!(t.max_cumulative >= t.max_error && t.max_cumulative <= 100.0 * t.max_error);
+    }
+    let get = |spacing: &str, lookup, size| {
+        summary
+            .tables
+            .iter()
+            .find(|t| t.spacing == spacing && t.lookup == lookup && t.size == size)
+            .unwrap()
+            .max_error
+    };
+    // Nearest lookup errs by about half a cell of slope; bilinear by a
+    // fraction of that which shrinks faster with size.
+    for spacing in ["uniform", "quadratic"] {
+        assert!(get(spacing, Lookup::Nearest, 64) < get(spacing, Lookup::Nearest, 16));
+        assert!(get(spacing, Lookup::Bilinear, 64) < get(spacing, Lookup::Bilinear, 16));
+    }
+    assert!(get("quadratic", Lookup::Bilinear, 64) < 0.1 * get("quadratic", Lookup::Nearest, 64));
+}
+
+#[test]
+fn accuracy_study_small() {
+    let mut out = out_dir("accuracy");
+    let options = AccuracyOptions {
+        steps: 9,
+        lengths: vec![0.001, 1.0, 100.0],
+        gpu: true,
+    };
+    let summary = accuracy::run(&options, &mut out, &quiet).unwrap();
+    if gpu_required() {
+        assert!(
+            summary.gpu_adapter.is_some(),
+            "TETRAY_REQUIRE_GPU=1: {:?}",
+            summary.gpu_note
+        );
+    }
+    let mut names = vec![
+        "accuracy_by_length.svg".to_string(),
+        "accuracy_points.csv".into(),
+        "accuracy_summary.csv".into(),
+        "accuracy.json".into(),
+    ];
+    let devices: &[&str] = if summary.gpu_adapter.is_some() {
+        &["cpu", "gpu"]
+    } else {
+        &["cpu"]
+    };
+    for model in ["attenuation", "opacity"] {
+        for d in ["0.001", "1", "100"] {
+            for device in devices {
+                names.push(format!("accuracy_{model}_d{d}_{device}.svg"));
+            }
+        }
+    }
+    let names: Vec<&str> = names.iter().map(String::as_str).collect();
+    assert_files(&out, &names);
+    assert!(
+        failed(&summary.checks).is_empty(),
+        "{:?}",
+        failed(&summary.checks)
+    );
+    let get = |device: Device, method: &str, d: f64| {
+        summary
+            .sweeps
+            .iter()
+            .find(|s| s.device == device && s.method == method && s.length == d)
+            .map(|s| s.max_error)
+    };
+    for d in [0.001, 1.0, 100.0] {
+        let ppi = get(Device::Cpu, "ppi", d).unwrap();
+        let average = get(Device::Cpu, "average", d).unwrap();
+        assert!(
+            ppi < 1e-5 && ppi < average,
+            "D = {d}: ppi {ppi} average {average}"
+        );
+        if let Some(gpu_ppi) = get(Device::Gpu, "ppi", d) {
+            // f32 in the kernel: eq. 5.5 and the bilinear lookup, as on the CPU.
+            assert!(gpu_ppi < 1e-5, "D = {d}: gpu ppi {gpu_ppi}");
+            let gpu_exact = get(Device::Gpu, "exact", d).unwrap();
+            // The kernel's f32 erfcx / Dawson forms (2e-7 to 4e-7 relative).
+            assert!(gpu_exact < 1e-5, "D = {d}: gpu exact {gpu_exact}");
+        }
+    }
+    // Averaging's error grows with D towards one half (figs. 6.5-6.8).
+    let avg: Vec<f64> = [0.001, 1.0, 100.0]
+        .iter()
+        .map(|&d| get(Device::Cpu, "average", d).unwrap())
+        .collect();
+    assert!(
+        avg[0] < avg[1] && avg[1] < avg[2] && avg[2] > 0.3 && avg[2] < 0.5,
+        "{avg:?}"
+    );
+}
