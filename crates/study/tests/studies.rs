@@ -178,3 +178,72 @@ fn accuracy_study_small() {
         "{avg:?}"
     );
 }
+
+#[test]
+fn smoothness_study_small() {
+    use tetray_study::smoothness::{self, SmoothnessOptions};
+    let mut out = out_dir("smoothness");
+    let options = SmoothnessOptions {
+        pixels: 120,
+        cells: 2,
+        centre_sigma_px: 1.5,
+        gpu: true,
+    };
+    let summary = smoothness::run(&options, &mut out, &quiet).unwrap();
+    if gpu_required() {
+        assert!(
+            summary.gpu_adapter.is_some(),
+            "TETRAY_REQUIRE_GPU=1: {:?}",
+            summary.gpu_note
+        );
+    }
+    let mut names: Vec<String> = ["attenuation", "opacity"]
+        .iter()
+        .flat_map(|m| ["constant", "back", "front"].map(|c| format!("smoothness_{m}_{c}.svg")))
+        .collect();
+    names.extend(["smoothness_profiles.csv".into(), "smoothness.json".into()]);
+    let names: Vec<&str> = names.iter().map(String::as_str).collect();
+    assert_files(&out, &names);
+    assert_eq!(summary.profiles.len(), 6 * 3 * 3);
+    assert!(
+        failed(&summary.checks).is_empty(),
+        "{:?}",
+        failed(&summary.checks)
+    );
+    // The slab is 2 cells of 5 tetrahedra.
+    assert_eq!(summary.tetrahedra, 10);
+    for p in &summary.profiles {
+        // Every method's mean is within the averaging error of the truth.
+        assert!((p.mean - p.reference).abs() < 0.3, "{p:?}");
+        assert!(p.range >= 0.0 && p.response >= 0.0);
+    }
+    // Averaging luminance varies visibly across the face (Mach bands).
+    let average_range = summary
+        .profiles
+        .iter()
+        .filter(|p| p.method == "average")
+        .map(|p| p.range)
+        .fold(0.0, f64::max);
+    assert!(average_range > 1e-2, "{average_range}");
+}
+
+#[test]
+fn centre_surround_kernel_ignores_constant_fields() {
+    use tetray_study::smoothness::{centre_surround, convolve};
+    let kernel = centre_surround(2.0);
+    assert!(kernel.iter().sum::<f64>().abs() < 1e-12);
+    let flat = convolve(&[0.7; 50], &kernel);
+    assert!(flat.iter().all(|r| r.abs() < 1e-12));
+    // A kink gives a response at the kink and almost none far from it.
+    let kink: Vec<f64> = (0..100)
+        .map(|i| if i < 50 { 0.0 } else { 0.01 * (i - 50) as f64 })
+        .collect();
+    let r = convolve(&kink, &kernel);
+    assert!(
+        r[50].abs() > 1e-3 && r[10].abs() < 1e-9 && r[90].abs() < 1e-9,
+        "{} {} {}",
+        r[50],
+        r[10],
+        r[90]
+    );
+}

@@ -159,7 +159,7 @@ fn fraction(v: f64, (lo, hi): (f64, f64), scale: Scale) -> f64 {
 /// The range an axis shows for data spanning `data` (min, max): the fixed
 /// range if given, else the data padded to round numbers (decades for log
 /// axes). Empty or degenerate data gives a unit range.
-pub(crate) fn fit_range(axis: &Axis, data: Option<(f64, f64)>) -> (f64, f64) {
+pub fn fit_range(axis: &Axis, data: Option<(f64, f64)>) -> (f64, f64) {
     if let Some(range) = axis.range {
         return range;
     }
