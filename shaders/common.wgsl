@@ -67,16 +67,6 @@ const STAT_BOUND_HITS: u32 = 6u;
 const STAT_WALK_FAILURES: u32 = 7u;
 const STAT_COUNT: u32 = 8u;
 
-// Methods (host: tetray_gpu::layout::method_code).
-const METHOD_PPI: u32 = 0u;
-const METHOD_EXACT: u32 = 1u;
-const METHOD_AVERAGE: u32 = 2u;
-const METHOD_AVERAGE_OPACITY: u32 = 3u;
-const METHOD_LIN_AVG_OPACITY: u32 = 4u;
-const METHOD_LIN_OPACITY: u32 = 5u;
-const METHOD_PREINTEGRATED: u32 = 6u;
-const METHOD_RIEMANN: u32 = 7u;
-
 // A boundary face with no neighbour, and one on the convex hull (a ray
 // leaving through it is done).
 const NO_NEIGHBOR: u32 = 0xffffffffu;

@@ -3,6 +3,22 @@
 // Every method but the Riemann sum and full pre-integration reduces to the
 // two numbers of eq. 5.5, zeta and Psi:
 // I = I0 zeta + L_b (Psi - zeta) + L_f (1 - Psi).
+//
+// Shared by the ray caster and the cell projection (tetray_project): the
+// including module declares `params` with the integrator's members
+// (method, grey, split, knot_count, psi_size, inv_unit_distance,
+// riemann_step, preint_*), the `tables` storage array and the `psi_table`
+// texture.
+
+// Methods (host: tetray_gpu::layout::method_code).
+const METHOD_PPI: u32 = 0u;
+const METHOD_EXACT: u32 = 1u;
+const METHOD_AVERAGE: u32 = 2u;
+const METHOD_AVERAGE_OPACITY: u32 = 3u;
+const METHOD_LIN_AVG_OPACITY: u32 = 4u;
+const METHOD_LIN_OPACITY: u32 = 5u;
+const METHOD_PREINTEGRATED: u32 = 6u;
+const METHOD_RIEMANN: u32 = 7u;
 
 const SQRT_PI_2: f32 = 0.88622693;
 const ALPHA_MAX: f32 = 0.999999;

@@ -34,11 +34,13 @@ impl GpuContext {
         let info = adapter.get_info();
         let limits = adapter.limits();
         let timestamps = adapter.features().contains(wgpu::Features::TIMESTAMP_QUERY);
-        let required_features = if timestamps {
-            wgpu::Features::TIMESTAMP_QUERY
-        } else {
-            wgpu::Features::empty()
-        };
+        // Optional features, taken where the adapter has them: timestamps
+        // for the ray caster, float blending and dual-source blending for
+        // the cell projection's render targets (tetray_project).
+        let required_features = adapter.features()
+            & (wgpu::Features::TIMESTAMP_QUERY
+                | wgpu::Features::FLOAT32_BLENDABLE
+                | wgpu::Features::DUAL_SOURCE_BLENDING);
         let (device, queue) = adapter
             .request_device(&wgpu::DeviceDescriptor {
                 label: Some("tetray"),

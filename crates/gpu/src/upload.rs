@@ -346,6 +346,22 @@ impl GpuIntegrator {
             data,
         }
     }
+
+    /// What was uploaded.
+    pub fn data(&self) -> &IntegratorData {
+        &self.data
+    }
+
+    /// The knot intervals and pre-integration table (WGSL `tables`), for
+    /// other kernels that integrate with shaders/integrate.wgsl.
+    pub fn tables_buffer(&self) -> &wgpu::Buffer {
+        &self.tables
+    }
+
+    /// The Psi table texture (WGSL `psi_table`).
+    pub fn psi_view(&self) -> &wgpu::TextureView {
+        &self.psi
+    }
 }
 
 /// The knot intervals as the kernel reads them (shaders/integrate.wgsl):

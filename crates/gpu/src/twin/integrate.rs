@@ -40,7 +40,7 @@ fn table(input: &Inputs, i: u32) -> Vec4 {
     Vec4::from_array(input.tables[i as usize])
 }
 
-fn in_interval(input: &Inputs, k: i32, s: f32) -> Sample {
+pub fn in_interval(input: &Inputs, k: i32, s: f32) -> Sample {
     let base = 4 * (k + 1).clamp(0, input.params.knot_count as i32) as u32;
     let head = table(input, base);
     let slope = table(input, base + 1);

@@ -5,7 +5,7 @@
 //! arithmetic (fused multiply-adds, its exp), not the algorithm.
 
 mod bvh;
-mod integrate;
+pub mod integrate;
 pub mod predicate;
 
 use glam::{Vec3, Vec4};

@@ -1,0 +1,50 @@
+// Declarations of the cell-projection pipeline (tetray_project): parameters
+// and bindings. The host concatenates project_common, integrate and project
+// (in that order) into one module; integrate.wgsl reads `params`' integrator
+// members, `tables` and `psi_table`.
+
+// Per-frame parameters (host: tetray_project::layout::Params). The camera
+// as the ray casters have it: pixel (px, py) is the ray through
+// right * x + up * y, x = (px + 0.5 - half_width) pixel,
+// y = (half_height - py - 0.5) pixel, at unit depth from `position`
+// (perspective) or on the view plane through it (orthographic).
+struct Params {
+    position: vec3<f32>,
+    orthographic: u32,
+    right: vec3<f32>,
+    pixel: f32,
+    up: vec3<f32>,
+    half_width: f32,
+    direction: vec3<f32>,
+    half_height: f32,
+    method: u32,
+    grey: u32,
+    split: u32,
+    knot_count: u32,
+    psi_size: u32,
+    inv_unit_distance: f32,
+    riemann_step: f32,
+    preint_size: u32,
+    preint_offset: u32,
+    preint_lo: f32,
+    preint_scale: f32,
+    preint_length: f32,
+}
+
+// Counters (host: tetray_project::layout::STAT_*).
+const STAT_SEGMENTS: u32 = 0u;
+const STAT_COUNT: u32 = 2u;
+
+// A draw of the whole cell, transfer function sampled at the segment ends
+// (host: tetray_project::draws::NO_CLIP).
+const NO_CLIP: u32 = 0xffffffffu;
+
+@group(0) @binding(0) var<uniform> params: Params;
+// Per point: position and active scalar.
+@group(0) @binding(1) var<storage, read> points: array<vec4<f32>>;
+// Per tetrahedron: its points, positively oriented.
+@group(0) @binding(2) var<storage, read> tets: array<vec4<u32>>;
+// Transfer-function intervals, then the pre-integration table.
+@group(0) @binding(3) var<storage, read> tables: array<vec4<f32>>;
+@group(0) @binding(4) var psi_table: texture_2d<f32>;
+@group(0) @binding(5) var<storage, read_write> stats: array<atomic<u32>, STAT_COUNT>;
