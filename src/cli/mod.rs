@@ -8,6 +8,7 @@ mod render;
 mod renderer;
 mod scene;
 mod segment;
+mod study;
 
 use clap::{Parser, Subcommand};
 
@@ -35,6 +36,9 @@ pub enum Command {
     Psi(psi::PsiArgs),
     /// Render frames orbiting the camera and print timings as JSON.
     Bench(Box<bench::BenchArgs>),
+    /// Run a study of the methods (dissertation chapters 5-6): SVG plots,
+    /// CSV and JSON in a folder.
+    Study(Box<study::StudyArgs>),
 }
 
 /// Runs the parsed command line.
@@ -46,6 +50,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Some(Command::Segment(args)) => segment::run(&args),
         Some(Command::Psi(args)) => psi::run(&args),
         Some(Command::Bench(args)) => bench::run(&args),
+        Some(Command::Study(args)) => study::run(&args),
     }
 }
 

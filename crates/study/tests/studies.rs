@@ -247,3 +247,70 @@ fn centre_surround_kernel_ignores_constant_fields() {
         r[90]
     );
 }
+
+#[test]
+fn speed_study_small() {
+    use tetray_integrate::Method;
+    use tetray_study::speed::{self, SpeedOptions};
+    let data_dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data/plot3d");
+    let mut out = out_dir("speed");
+    let options = SpeedOptions {
+        size: (32, 32),
+        frames: 1,
+        methods: vec![Method::Ppi, Method::Average, Method::LinOpacity],
+        resolutions: vec![16, 128],
+        scaling_tets: vec![5_000, 40_000],
+        ..SpeedOptions::small(data_dir)
+    };
+    let start = std::time::Instant::now();
+    let log = |line: &str| eprintln!("{:.1} s {line}", start.elapsed().as_secs_f64());
+    let summary = speed::run(&options, &mut out, &log).unwrap();
+    if gpu_required() {
+        assert!(
+            summary.gpu_adapter.is_some(),
+            "TETRAY_REQUIRE_GPU=1: {:?}",
+            summary.notes
+        );
+    }
+    assert_files(
+        &out,
+        &[
+            "speed_table.csv",
+            "speed_table.svg",
+            "speed_table.md",
+            "speed_resolution.csv",
+            "speed_resolution.svg",
+            "speed_scaling.csv",
+            "speed_scaling.svg",
+            "speed.json",
+        ],
+    );
+    assert!(
+        failed(&summary.checks).is_empty(),
+        "{:?}",
+        failed(&summary.checks)
+    );
+    let renderers = if summary.gpu_adapter.is_some() { 2 } else { 1 };
+    assert_eq!(summary.table.len(), 3 * 3 * renderers);
+    assert_eq!(summary.resolution.len(), 2 * renderers);
+    assert_eq!(summary.scaling.len(), 2 * renderers);
+    assert!(summary.notes.iter().any(|n| n.contains("tetray-project")));
+    // The datasets as the dissertation counts them (table 6.1, our split).
+    let tets = |name: &str| summary.table.iter().find(|r| r.mesh == name).unwrap().tets;
+    assert_eq!(tets("Blunt Fin"), 187_318);
+    assert_eq!(tets("Oxygen Post"), 513_375);
+    // The boxes: 10^3 and 20^3 hexahedra of 5 tetrahedra.
+    assert_eq!(
+        summary.generated.iter().map(|g| g.tets).collect::<Vec<_>>(),
+        [5_000, 40_000]
+    );
+    for r in summary
+        .table
+        .iter()
+        .chain(&summary.resolution)
+        .chain(&summary.scaling)
+    {
+        assert!(r.fps.is_finite() && r.fps > 0.0, "{r:?}");
+        assert!((r.tets_per_s - r.tets as f64 * r.fps).abs() <= 1e-6 * r.tets_per_s);
+    }
+}

@@ -132,7 +132,7 @@ fn draw_panel(svg: &mut Svg, panel: &LinePanel, x0: f64, y0: f64) {
                 continue;
             }
             let (px, py) = frame.map(p.0, p.1);
-            let _ = write!(path, "{}{px:.2},{py:.2} ", if pen_down { "L" } else { "M" });
+            let _ = write!(path, "{}{px:.1},{py:.1} ", if pen_down { "L" } else { "M" });
             pen_down = true;
         }
         let dash = match series.stroke {

@@ -5,6 +5,7 @@
 
 pub mod heat;
 pub mod line;
+pub mod table;
 
 use std::fmt::Write as _;
 

@@ -1,0 +1,67 @@
+//! Mesh stages: face topology (tets/s), the boundary BVH's build (faces/s)
+//! and its entry queries (rays/s), on the Blunt Fin and a generated box.
+
+use std::hint::black_box;
+use std::time::Duration;
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use glam::Vec3;
+use tetray_boundary_bvh::watertight::RayFrame;
+use tetray_boundary_bvh::{BoundaryBvh, BuildPreset};
+use tetray_mesh::Topology;
+use tetray_raycast::scenes::{box_grid, CellSplit};
+
+mod support;
+
+fn topology_build(c: &mut Criterion) {
+    let fin = support::blunt_fin_mesh().mesh;
+    let cube = box_grid(Vec3::ZERO, Vec3::ONE, [40; 3], CellSplit::Five).expect("box");
+    let mut group = c.benchmark_group("topology_build");
+    group.sample_size(10);
+    group.measurement_time(Duration::from_secs(3));
+    for (name, mesh) in [("blunt_fin", &fin), ("box_40^3x5", &cube)] {
+        group.throughput(Throughput::Elements(mesh.tets.len() as u64));
+        group.bench_function(BenchmarkId::from_parameter(name), |b| {
+            b.iter(|| Topology::build(black_box(mesh)).expect("topology"))
+        });
+    }
+    group.finish();
+}
+
+fn bvh(c: &mut Criterion) {
+    let loaded = support::blunt_fin_mesh();
+    let (mesh, topology) = (&loaded.mesh, &loaded.topology);
+    let faces = topology.boundary_faces.len() as u64;
+    let mut group = c.benchmark_group("bvh_build");
+    group.sample_size(10);
+    group.measurement_time(Duration::from_secs(3));
+    group.throughput(Throughput::Elements(faces));
+    for preset in [BuildPreset::default()] {
+        group.bench_function(BenchmarkId::from_parameter(preset.name()), |b| {
+            b.iter(|| BoundaryBvh::build(mesh, topology, preset).expect("bvh"))
+        });
+    }
+    group.finish();
+
+    // Entry queries: the primary rays of a 128 x 128 view of the mesh.
+    let bvh = BoundaryBvh::build(mesh, topology, BuildPreset::default()).expect("bvh");
+    let scene = support::blunt_fin();
+    let camera = support::camera(&scene);
+    let rays = camera.pixel_rays(128, 128).expect("rays");
+    let frames: Vec<RayFrame> = (0..128 * 128).map(|i| rays.ray(i % 128, i / 128)).collect();
+    let mut group = c.benchmark_group("bvh_queries");
+    group.throughput(Throughput::Elements(frames.len() as u64));
+    group.measurement_time(Duration::from_secs(3));
+    group.bench_function("first_entry_128x128", |b| {
+        b.iter(|| {
+            frames
+                .iter()
+                .filter(|ray| bvh.first_entry(ray, 0.0, f32::INFINITY, &[]).is_some())
+                .count()
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(benches, topology_build, bvh);
+criterion_main!(benches);
