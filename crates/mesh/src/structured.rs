@@ -9,10 +9,14 @@
 
 use rayon::prelude::*;
 
+/// Local corner offsets `(di, dj, dk)` of a hexahedron's tetrahedra:
+/// `[parity][tet][corner]`.
+pub(crate) type Templates = [[[[u32; 3]; 4]; 5]; 2];
+
 /// Local corner offsets `(di, dj, dk)` of a hexahedron's tetrahedra, one set
 /// per parity of `i + j + k`, each tetrahedron positively oriented when the
 /// grid axes i, j, k are right-handed.
-fn templates() -> [[[[u32; 3]; 4]; 5]; 2] {
+pub(crate) fn templates() -> Templates {
     let even = [
         [[0, 0, 0], [1, 1, 0], [1, 0, 1], [0, 1, 1]],
         [[1, 0, 0], [0, 0, 0], [1, 1, 0], [1, 0, 1]],
@@ -61,22 +65,31 @@ pub fn boundary_quad_count(dims: [usize; 3]) -> usize {
 /// two points with `(i + j + k) % 2 == diagonal_parity` (0 or 1: the two
 /// conforming splits). The caller guarantees the point count fits in `u32`.
 pub fn structured_tets(dims: [usize; 3], diagonal_parity: usize) -> Vec<[u32; 4]> {
-    let [ni, nj, _] = dims;
-    let [hi, hj, hk] = dims.map(|n| n.saturating_sub(1));
     let templates = templates();
-    (0..hi * hj * hk)
+    (0..hex_count(dims))
         .into_par_iter()
-        .flat_map_iter(|h| {
-            let (i, j, k) = (h % hi, (h / hi) % hj, h / (hi * hj));
-            let set = &templates[(i + j + k + diagonal_parity) % 2];
-            set.iter().map(move |tet| {
-                tet.map(|[di, dj, dk]| {
-                    let (pi, pj, pk) = (i + di as usize, j + dj as usize, k + dk as usize);
-                    (pi + ni * (pj + nj * pk)) as u32
-                })
-            })
-        })
+        .flat_map_iter(|h| hex_tets(&templates, dims, h, diagonal_parity))
         .collect()
+}
+
+/// The 5 tetrahedra of hexahedron `h` (numbered like the points, i
+/// fastest) of an `ni x nj x nk` point grid, as in [`structured_tets`].
+pub(crate) fn hex_tets(
+    templates: &Templates,
+    dims: [usize; 3],
+    h: usize,
+    diagonal_parity: usize,
+) -> [[u32; 4]; 5] {
+    let [ni, nj, _] = dims;
+    let [hi, hj, _] = dims.map(|n| n.saturating_sub(1));
+    let (i, j, k) = (h % hi, (h / hi) % hj, h / (hi * hj));
+    let set = &templates[(i + j + k + diagonal_parity) % 2];
+    set.map(|tet| {
+        tet.map(|[di, dj, dk]| {
+            let (pi, pj, pk) = (i + di as usize, j + dj as usize, k + dk as usize);
+            (pi + ni * (pj + nj * pk)) as u32
+        })
+    })
 }
 
 #[cfg(test)]
