@@ -29,6 +29,7 @@ mod numeric;
 mod split;
 mod vtu_data;
 mod vtu_read;
+mod vtu_stream;
 mod vtu_write;
 mod vtu_xml;
 
@@ -36,6 +37,7 @@ use std::path::Path;
 
 pub use error::VtkError;
 pub use legacy_write::write_legacy;
+pub use vtu_stream::{write_vtu_streamed, TetChunks, VtuIndex, VtuStreamOptions};
 pub use vtu_write::{write_vtu, write_vtu_with, VtuOptions};
 
 use crate::TetMesh;

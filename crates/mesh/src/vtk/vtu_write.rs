@@ -9,6 +9,7 @@ use flate2::write::ZlibEncoder;
 use flate2::Compression;
 
 use super::vtu_data::ZLIB;
+use super::vtu_stream::{write_vtu_streamed, VtuIndex, VtuStreamOptions};
 use super::VtuEncoding;
 use crate::TetMesh;
 
@@ -73,6 +74,17 @@ pub fn write_vtu_with(mesh: &TetMesh, w: &mut impl Write, options: &VtuOptions) 
             io::ErrorKind::InvalidInput,
             "zlib block size 0",
         ));
+    }
+    if options.encoding == VtuEncoding::AppendedRaw && !options.zlib {
+        // The offsets follow from the counts: stream the arrays (same
+        // bytes) instead of building the appended section in memory.
+        let stream = VtuStreamOptions {
+            index: VtuIndex::Int64,
+            header_u64: options.header_u64,
+            big_endian: options.big_endian,
+        };
+        return write_vtu_streamed(&mesh.points, &mesh.fields, mesh.tets.as_slice(), w, &stream)
+            .map(|_| ());
     }
     let mut writer = ArrayWriter {
         options: *options,
@@ -307,7 +319,7 @@ impl ArrayWriter {
 }
 
 /// Escapes text for an XML attribute value.
-fn escape(s: &str) -> String {
+pub(super) fn escape(s: &str) -> String {
     let mut out = String::with_capacity(s.len());
     for c in s.chars() {
         match c {
