@@ -1,6 +1,7 @@
 //! Tetrahedral meshes for volume rendering: points, tetrahedra, point scalar
 //! fields; readers for VTK legacy, VTK XML (.vtu) and PLOT3D; the
-//! face-neighbour graph and boundary faces; validation.
+//! face-neighbour graph and boundary faces; validation; large generated
+//! test meshes ([`generate`]).
 //!
 //! Conventions shared by every crate of the workspace:
 //! - every tetrahedron is stored positively oriented:
@@ -23,6 +24,7 @@ mod seams;
 mod topology;
 mod validate;
 
+pub mod generate;
 pub mod plot3d;
 pub mod structured;
 
