@@ -2,6 +2,7 @@
 
 mod args;
 mod bench;
+mod generate;
 mod info;
 mod psi;
 mod render;
@@ -39,6 +40,9 @@ pub enum Command {
     /// Run a study of the methods (dissertation chapters 5-6): SVG plots,
     /// CSV and JSON in a folder.
     Study(Box<study::StudyArgs>),
+    /// Write a large test mesh (a refined PLOT3D dataset or a procedural
+    /// nonconvex solid) at a requested tetrahedron count; print JSON.
+    Generate(generate::GenerateArgs),
 }
 
 /// Runs the parsed command line.
@@ -51,6 +55,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Some(Command::Psi(args)) => psi::run(&args),
         Some(Command::Bench(args)) => bench::run(&args),
         Some(Command::Study(args)) => study::run(&args),
+        Some(Command::Generate(args)) => generate::run(&args),
     }
 }
 

@@ -1,0 +1,242 @@
+//! End-to-end tests of `tetray generate`: small meshes generated, their
+//! JSON summaries checked against the files, then loaded by `tetray info`;
+//! bad arguments rejected with one line and exit code 1.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use serde_json::Value;
+
+const BIN: &str = env!("CARGO_BIN_EXE_tetray");
+
+fn data_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/plot3d")
+}
+
+/// A fresh folder under the target directory for one test.
+fn scratch(test: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join("cli-generate")
+        .join(test);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("create the scratch folder");
+    dir
+}
+
+fn run_in(dir: &Path, args: &[&str]) -> Output {
+    Command::new(BIN)
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("run tetray")
+}
+
+fn json(dir: &Path, args: &[&str]) -> Value {
+    let out = run_in(dir, args);
+    let (stdout, stderr) = (
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr),
+    );
+    assert!(out.status.success(), "tetray {args:?} failed:\n{stderr}");
+    serde_json::from_str(&stdout)
+        .unwrap_or_else(|e| panic!("tetray {args:?}: stdout is not JSON ({e}):\n{stdout}"))
+}
+
+fn count(v: &Value) -> u64 {
+    v.as_u64().unwrap_or_else(|| panic!("{v} is not a count"))
+}
+
+/// Each file of the summary (paths as given, relative to `dir`) exists
+/// with the size it gives; returns the total.
+fn check_files(dir: &Path, summary: &Value) -> u64 {
+    let files = summary["files"].as_array().expect("files");
+    let mut total = 0;
+    for file in files {
+        let path = file["path"].as_str().expect("path");
+        let size = std::fs::metadata(dir.join(path)).expect(path).len();
+        assert_eq!(count(&file["bytes"]), size, "{path}");
+        total += size;
+    }
+    assert_eq!(count(&summary["bytes"]), total);
+    total
+}
+
+#[test]
+fn generate_solid_then_info() {
+    let dir = scratch("solid");
+    let summary = json(
+        &dir,
+        &["generate", "solid", "--tets", "20000", "-o", "shell.vtu"],
+    );
+    assert_eq!(summary["kind"], "solid");
+    assert_eq!(count(&summary["requested_tets"]), 20_000);
+    let tets = count(&summary["tets"]);
+    assert!((20_000..21_000).contains(&tets), "{summary}");
+    check_files(&dir, &summary);
+
+    let info = json(&dir, &["info", "shell.vtu", "--json"]);
+    assert_eq!(info["valid"], true);
+    assert_eq!(count(&info["tets"]), tets);
+    assert_eq!(info["points"], summary["points"]);
+    assert_eq!(count(&info["components"]), 1);
+    assert_eq!(count(&info["reoriented"]), 0);
+    let names: Vec<&str> = info["fields"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|f| f["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(names, ["wave", "linear"]);
+}
+
+#[test]
+fn generate_plot3d_then_info() {
+    let dir = scratch("plot3d");
+    let data = data_dir();
+    let data = data.to_str().unwrap();
+    // Below the dataset's own size: factors 1, the grid written back.
+    let summary = json(
+        &dir,
+        &[
+            "generate",
+            "plot3d",
+            "--dataset",
+            "bluntfin",
+            "--data-dir",
+            data,
+            "--tets",
+            "20000",
+            "-o",
+            "out",
+        ],
+    );
+    assert_eq!(summary["factors"], serde_json::json!([1, 1, 1]));
+    assert_eq!(count(&summary["tets"]), 187_395 - 77);
+    assert_eq!(check_files(&dir, &summary), 491_532 + 819_228);
+    // `info` finds the q file beside the grid.
+    let info = json(&dir, &["info", "out/bluntfinxyz.bin", "--json"]);
+    assert_eq!(info["tets"], summary["tets"]);
+    assert_eq!(info["fields"].as_array().unwrap().len(), 5);
+
+    // A level of doubling of a file written before (--grid): 8 times the
+    // hexahedra, the q sibling refined with it.
+    let summary = json(
+        &dir,
+        &[
+            "generate",
+            "plot3d",
+            "--grid",
+            "out/bluntfinxyz.bin",
+            "--level",
+            "1",
+            "-o",
+            "twice",
+        ],
+    );
+    assert_eq!(summary["factors"], serde_json::json!([2, 2, 2]));
+    assert_eq!(summary["dims"], serde_json::json!([79, 63, 63]));
+    assert_eq!(count(&summary["hexahedra"]), 8 * 37_479);
+    assert_eq!(summary["files"].as_array().unwrap().len(), 2);
+    check_files(&dir, &summary);
+}
+
+#[test]
+fn bad_arguments_are_one_line_and_exit_1() {
+    let dir = scratch("bad");
+    let data = data_dir();
+    let data = data.to_str().unwrap();
+    let cases: &[(&[&str], &str)] = &[
+        (
+            &["generate", "solid", "--tets", "0", "-o", "a.vtu"],
+            "--tets",
+        ),
+        (
+            &["generate", "solid", "--tets", "ten", "-o", "a.vtu"],
+            "--tets",
+        ),
+        (
+            &["generate", "solid", "--tets", "2000000000", "-o", "a.vtu"],
+            "at most",
+        ),
+        (
+            &["generate", "solid", "--tets", "1000", "-o", "a.vtk"],
+            ".vtu",
+        ),
+        (&["generate", "solid", "-o", "a.vtu"], "--tets"),
+        (
+            &["generate", "plot3d", "--dataset", "bluntfin", "-o", "x"],
+            "--tets",
+        ),
+        (
+            &[
+                "generate",
+                "plot3d",
+                "--dataset",
+                "wing",
+                "--tets",
+                "1M",
+                "-o",
+                "x",
+            ],
+            "wing",
+        ),
+        (
+            &[
+                "generate",
+                "plot3d",
+                "--dataset",
+                "post",
+                "--data-dir",
+                "nowhere",
+                "--tets",
+                "1M",
+                "-o",
+                "x",
+            ],
+            "postxyz.bin",
+        ),
+        (
+            &[
+                "generate",
+                "plot3d",
+                "--dataset",
+                "comb",
+                "--data-dir",
+                data,
+                "--tets",
+                "1M",
+                "-o",
+                data,
+            ],
+            "overwrite",
+        ),
+        (
+            &[
+                "generate",
+                "plot3d",
+                "--dataset",
+                "comb",
+                "--tets",
+                "1M",
+                "--level",
+                "1",
+                "-o",
+                "x",
+            ],
+            "--level",
+        ),
+    ];
+    for (args, named) in cases {
+        let out = run_in(&dir, args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "tetray {args:?}:\n{stderr}");
+        let lines: Vec<&str> = stderr.lines().collect();
+        assert_eq!(lines.len(), 1, "tetray {args:?}: not one line:\n{stderr}");
+        assert!(lines[0].starts_with("error: "), "{}", lines[0]);
+        assert!(
+            lines[0].contains(named),
+            "tetray {args:?}: {} lacks {named:?}",
+            lines[0]
+        );
+    }
+}
