@@ -239,7 +239,13 @@ fn centre_surround_kernel_ignores_constant_fields() {
     // kink and from the ends, where the extended profile bends too.
     let radius = kernel.len() / 2;
     let kink: Vec<f64> = (0..200)
-        .map(|i| if i < 100 { 0.0 } else { 0.01 * (i - 100) as f64 })
+        .map(|i| {
+            if i < 100 {
+                0.0
+            } else {
+                0.01 * (i - 100) as f64
+            }
+        })
         .collect();
     let r = convolve(&kink, &kernel);
     let (left, right) = (100 - radius - 5, 100 + radius + 5);
