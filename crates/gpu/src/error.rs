@@ -40,6 +40,11 @@ pub enum GpuError {
         bytes: u64,
         limit: u64,
     },
+    #[error("frame {frame:?} does not match its target's size {target:?}")]
+    TargetSize {
+        frame: (u32, u32),
+        target: (u32, u32),
+    },
     #[error("reading the frame back from the GPU failed: {0}")]
     Readback(String),
     #[error("the GPU reported an error: {0}")]

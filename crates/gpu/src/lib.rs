@@ -8,7 +8,10 @@
 //! - [`GpuScene`], [`GpuIntegrator`]: a mesh and a transfer function with
 //!   its method, uploaded;
 //! - [`GpuRaycaster::render`]: a frame, read back, with counters and the
-//!   GPU time from timestamp queries.
+//!   GPU time from timestamp queries;
+//! - [`GpuRaycaster::encode_rows`] into a [`GpuTarget`]: a frame rendered
+//!   a few rows per submission and kept on the GPU (the viewer), on a
+//!   device shared with a GUI ([`GpuContext::from_device`]).
 //!
 //! The kernel is WGSL in `shaders/` (see [`shaders`]).
 
@@ -17,12 +20,15 @@ mod error;
 pub mod layout;
 mod render;
 pub mod shaders;
+mod shared;
+mod target;
 pub mod twin;
 mod upload;
 
 pub use context::GpuContext;
 pub use error::GpuError;
 pub use render::{
-    frame_params, GpuFrame, GpuRaycaster, GpuRenderOptions, GpuStats, SceneLayout, TILE,
+    frame_params, FrameJob, GpuFrame, GpuRaycaster, GpuRenderOptions, GpuStats, SceneLayout, TILE,
 };
+pub use target::GpuTarget;
 pub use upload::{GpuIntegrator, GpuScene, IntegratorData, PreintParams, SceneData};

@@ -2,15 +2,16 @@
 //! dispatches, optional timestamp queries, and the read-back of the image
 //! and the counters.
 
+use std::ops::Range;
 use std::time::{Duration, Instant};
 
 use tetray_raycast::{Camera, Image};
 use wgpu::util::DeviceExt;
 
-use crate::layout::{self, Params, Tile, STAT_COUNT};
+use crate::layout::{self, Params, Tile};
 use crate::shaders::raycast_source;
 use crate::upload::{GpuIntegrator, GpuScene, IntegratorData};
-use crate::{GpuContext, GpuError};
+use crate::{GpuContext, GpuError, GpuTarget};
 
 /// Pixels per side of one dispatch; a frame is as many dispatches as it
 /// takes (each short, and within the workgroup-count limit).
@@ -159,41 +160,93 @@ impl GpuRaycaster {
         opts: &GpuRenderOptions,
     ) -> Result<GpuFrame, GpuError> {
         let (width, height) = (opts.width, opts.height);
-        let params = frame_params(&scene.layout(), &integrator.data, camera, opts)?;
-        let pixels = u64::from(width) * u64::from(height);
-        let image_bytes = pixels * 16;
-        if image_bytes
-            > ctx
-                .limits
-                .max_storage_buffer_binding_size
-                .min(ctx.limits.max_buffer_size)
-        {
-            return Err(GpuError::ImageTooLarge {
-                width,
-                height,
-                bytes: image_bytes,
-                limit: ctx.limits.max_storage_buffer_binding_size,
-            });
-        }
+        let target = GpuTarget::new(ctx, width, height)?;
         let device = &ctx.device;
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let queries = ctx.timestamps.then(|| Timestamps::new(ctx));
+        let mut encoder = device.create_command_encoder(&Default::default());
+        let timestamp_writes = queries.as_ref().map(|q| wgpu::ComputePassTimestampWrites {
+            query_set: &q.set,
+            beginning_of_pass_write_index: Some(0),
+            end_of_pass_write_index: Some(1),
+        });
+        let job = FrameJob {
+            scene,
+            integrator,
+            camera,
+            opts,
+        };
+        self.encode_rows(
+            ctx,
+            &job,
+            &target,
+            0..height,
+            &mut encoder,
+            timestamp_writes,
+        )?;
+        if let Some(q) = &queries {
+            q.resolve(&mut encoder);
+        }
+        let image_bytes = target.image_bytes();
+        let image_read = readback_buffer(ctx, "image readback", image_bytes);
+        let stats_read = target.encode_stats_readback(ctx, &mut encoder);
+        encoder.copy_buffer_to_buffer(target.image(), 0, &image_read, 0, image_bytes);
+        let start = Instant::now();
+        let submission = ctx.queue.submit([encoder.finish()]);
+        device
+            .poll(wgpu::PollType::Wait {
+                submission_index: Some(submission),
+                timeout: None,
+            })
+            .map_err(|e| GpuError::Driver(e.to_string()))?;
+        let wall_time = start.elapsed();
+        if let Some(error) = pollster::block_on(scope.pop()) {
+            return Err(GpuError::Driver(error.to_string()));
+        }
+        let counters: Vec<u32> = read_buffer(ctx, &stats_read)?;
+        let rgba: Vec<[f32; 4]> = read_buffer(ctx, &image_read)?;
+        let gpu_time = match &queries {
+            Some(q) => q.read(ctx)?,
+            None => None,
+        };
+        let pixels = u64::from(width) * u64::from(height);
+        Ok(GpuFrame {
+            image: Image::from_pixels(width, height, rgba)?,
+            stats: GpuStats::from_counters(&counters, pixels, gpu_time, wall_time),
+        })
+    }
+
+    /// Encodes one compute pass rendering rows `rows` of `target` (every
+    /// tile of them) into `encoder`, without submitting: the counters
+    /// accumulate in the target, so a frame may be rendered a few rows per
+    /// submission (as the viewer does to stay responsive) and the image
+    /// used on the GPU without a read-back.
+    pub fn encode_rows(
+        &self,
+        ctx: &GpuContext,
+        job: &FrameJob<'_>,
+        target: &GpuTarget,
+        rows: Range<u32>,
+        encoder: &mut wgpu::CommandEncoder,
+        timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) -> Result<(), GpuError> {
+        let opts = job.opts;
+        if (opts.width, opts.height) != (target.width(), target.height()) {
+            return Err(GpuError::TargetSize {
+                frame: (opts.width, opts.height),
+                target: (target.width(), target.height()),
+            });
+        }
+        let params = frame_params(&job.scene.layout(), &job.integrator.data, job.camera, opts)?;
+        let rows = rows.start.min(opts.height)..rows.end.min(opts.height);
+        let device = &ctx.device;
         let params_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("params"),
             contents: bytemuck::bytes_of(&params),
             usage: wgpu::BufferUsages::UNIFORM,
         });
-        let (tiles, stride) = tile_buffer(ctx, width, height);
-        let image = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("image"),
-            size: image_bytes,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
-        let stats = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("stats"),
-            contents: bytemuck::cast_slice(&[0u32; STAT_COUNT]),
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-        });
+        let (tiles, stride) = tile_buffer(ctx, opts.width, rows);
+        let (scene, integrator) = (job.scene, job.integrator);
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("raycast"),
             layout: &self.layout,
@@ -217,73 +270,58 @@ impl GpuRaycaster {
                     binding: 8,
                     resource: wgpu::BindingResource::TextureView(&integrator.psi),
                 },
-                buffer_entry(9, &image),
-                buffer_entry(10, &stats),
+                buffer_entry(9, target.image()),
+                buffer_entry(10, target.stats()),
             ],
         });
-        let queries = ctx.timestamps.then(|| Timestamps::new(ctx));
-        let mut encoder = device.create_command_encoder(&Default::default());
-        {
-            let timestamp_writes = queries.as_ref().map(|q| wgpu::ComputePassTimestampWrites {
-                query_set: &q.set,
-                beginning_of_pass_write_index: Some(0),
-                end_of_pass_write_index: Some(1),
-            });
-            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some("raycast"),
-                timestamp_writes,
-            });
-            pass.set_pipeline(&self.pipeline);
-            for (i, tile) in tiles.tiles.iter().enumerate() {
-                pass.set_bind_group(0, &bind_group, &[(i as u64 * stride) as u32]);
-                pass.dispatch_workgroups(
-                    tile.width.div_ceil(WORKGROUP),
-                    tile.height.div_ceil(WORKGROUP),
-                    1,
-                );
-            }
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("raycast"),
+            timestamp_writes,
+        });
+        pass.set_pipeline(&self.pipeline);
+        for (i, tile) in tiles.tiles.iter().enumerate() {
+            pass.set_bind_group(0, &bind_group, &[(i as u64 * stride) as u32]);
+            pass.dispatch_workgroups(
+                tile.width.div_ceil(WORKGROUP),
+                tile.height.div_ceil(WORKGROUP),
+                1,
+            );
         }
-        if let Some(q) = &queries {
-            q.resolve(&mut encoder);
-        }
-        let image_read = readback_buffer(ctx, "image readback", image_bytes);
-        let stats_read = readback_buffer(ctx, "stats readback", (STAT_COUNT * 4) as u64);
-        encoder.copy_buffer_to_buffer(&image, 0, &image_read, 0, image_bytes);
-        encoder.copy_buffer_to_buffer(&stats, 0, &stats_read, 0, (STAT_COUNT * 4) as u64);
-        let start = Instant::now();
-        let submission = ctx.queue.submit([encoder.finish()]);
-        device
-            .poll(wgpu::PollType::Wait {
-                submission_index: Some(submission),
-                timeout: None,
-            })
-            .map_err(|e| GpuError::Driver(e.to_string()))?;
-        let wall_time = start.elapsed();
-        if let Some(error) = pollster::block_on(scope.pop()) {
-            return Err(GpuError::Driver(error.to_string()));
-        }
-        let counters: Vec<u32> = read_buffer(ctx, &stats_read)?;
-        let rgba: Vec<[f32; 4]> = read_buffer(ctx, &image_read)?;
-        let gpu_time = match &queries {
-            Some(q) => q.read(ctx)?,
-            None => None,
-        };
-        let wide = |lo: usize, hi: usize| u64::from(counters[lo]) | (u64::from(counters[hi]) << 32);
-        let stats = GpuStats {
-            rays: pixels,
-            rays_hit: u64::from(counters[layout::STAT_RAYS_HIT]),
+        Ok(())
+    }
+}
+
+/// One frame's inputs: what [`GpuRaycaster::encode_rows`] renders.
+#[derive(Clone, Copy)]
+pub struct FrameJob<'a> {
+    pub scene: &'a GpuScene,
+    pub integrator: &'a GpuIntegrator,
+    pub camera: &'a Camera,
+    pub opts: &'a GpuRenderOptions,
+}
+
+impl GpuStats {
+    /// The stats of `rays` rays from the kernel's counter array (read back
+    /// from [`GpuTarget::stats`]) and the times measured around it.
+    pub fn from_counters(
+        counters: &[u32],
+        rays: u64,
+        gpu_time: Option<Duration>,
+        wall_time: Duration,
+    ) -> GpuStats {
+        let at = |i: usize| u64::from(counters.get(i).copied().unwrap_or(0));
+        let wide = |lo: usize, hi: usize| at(lo) | (at(hi) << 32);
+        GpuStats {
+            rays,
+            rays_hit: at(layout::STAT_RAYS_HIT),
             segments: wide(layout::STAT_SEGMENTS_LO, layout::STAT_SEGMENTS_HI),
             steps: wide(layout::STAT_STEPS_LO, layout::STAT_STEPS_HI),
-            entries: u64::from(counters[layout::STAT_ENTRIES]),
-            steps_bound_hits: u64::from(counters[layout::STAT_BOUND_HITS]),
-            walk_failures: u64::from(counters[layout::STAT_WALK_FAILURES]),
+            entries: at(layout::STAT_ENTRIES),
+            steps_bound_hits: at(layout::STAT_BOUND_HITS),
+            walk_failures: at(layout::STAT_WALK_FAILURES),
             gpu_time,
             wall_time,
-        };
-        Ok(GpuFrame {
-            image: Image::from_pixels(width, height, rgba)?,
-            stats,
-        })
+        }
     }
 }
 
@@ -356,22 +394,25 @@ struct Tiles {
     tiles: Vec<Tile>,
 }
 
-/// The frame cut into [`TILE`]-sized dispatches, one `Tile` uniform each at
-/// a stride the dynamic offsets accept.
-fn tile_buffer(ctx: &GpuContext, width: u32, height: u32) -> (Tiles, u64) {
+/// Rows `rows` of a frame `width` wide cut into [`TILE`]-sized
+/// dispatches, one `Tile` uniform each at a stride the dynamic offsets
+/// accept.
+fn tile_buffer(ctx: &GpuContext, width: u32, rows: Range<u32>) -> (Tiles, u64) {
     let stride = u64::from(ctx.limits.min_uniform_buffer_offset_alignment).max(16);
     let mut tiles = Vec::new();
-    for y0 in (0..height).step_by(TILE as usize) {
+    for y0 in rows.clone().step_by(TILE as usize) {
         for x0 in (0..width).step_by(TILE as usize) {
             tiles.push(Tile {
                 x0,
                 y0,
                 width: TILE.min(width - x0),
-                height: TILE.min(height - y0),
+                height: TILE.min(rows.end - y0),
             });
         }
     }
-    let mut bytes = vec![0u8; tiles.len() * stride as usize];
+    // A uniform buffer may not be empty: an empty row range binds one
+    // unused entry and dispatches nothing.
+    let mut bytes = vec![0u8; tiles.len().max(1) * stride as usize];
     for (i, tile) in tiles.iter().enumerate() {
         let at = i * stride as usize;
         bytes[at..at + 16].copy_from_slice(bytemuck::bytes_of(tile));
@@ -393,7 +434,7 @@ fn buffer_entry(binding: u32, buffer: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_>
     }
 }
 
-fn readback_buffer(ctx: &GpuContext, label: &str, size: u64) -> wgpu::Buffer {
+pub(crate) fn readback_buffer(ctx: &GpuContext, label: &str, size: u64) -> wgpu::Buffer {
     ctx.device.create_buffer(&wgpu::BufferDescriptor {
         label: Some(label),
         size,
@@ -403,7 +444,7 @@ fn readback_buffer(ctx: &GpuContext, label: &str, size: u64) -> wgpu::Buffer {
 }
 
 /// Maps a read-back buffer and copies it out.
-fn read_buffer<T: bytemuck::Pod>(
+pub(crate) fn read_buffer<T: bytemuck::Pod>(
     ctx: &GpuContext,
     buffer: &wgpu::Buffer,
 ) -> Result<Vec<T>, GpuError> {
