@@ -10,6 +10,7 @@ mod renderer;
 mod scene;
 mod segment;
 mod study;
+mod view;
 
 use clap::{Parser, Subcommand};
 
@@ -37,6 +38,9 @@ pub enum Command {
     Psi(psi::PsiArgs),
     /// Render frames orbiting the camera and print timings as JSON.
     Bench(Box<bench::BenchArgs>),
+    /// Open the interactive viewer: orbit, edit the transfer function,
+    /// switch and compare methods (GPU ray caster, progressive).
+    View(Box<view::ViewArgs>),
     /// Run a study of the methods (dissertation chapters 5-6): SVG plots,
     /// CSV and JSON in a folder.
     Study(Box<study::StudyArgs>),
@@ -54,6 +58,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Some(Command::Segment(args)) => segment::run(&args),
         Some(Command::Psi(args)) => psi::run(&args),
         Some(Command::Bench(args)) => bench::run(&args),
+        Some(Command::View(args)) => view::run(&args),
         Some(Command::Study(args)) => study::run(&args),
         Some(Command::Generate(args)) => generate::run(&args),
     }

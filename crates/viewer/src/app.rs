@@ -1,0 +1,549 @@
+//! The viewer application: state, the frame loop and the image view.
+//! The control panel is in `panel.rs`, the overlays in `overlay.rs`.
+
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use anyhow::Context;
+use egui::{PointerButton, Rect, Sense};
+use glam::Vec3;
+use tetray_integrate::{Method, OpacityMode, TransferFunction};
+use tetray_raycast::{Camera, Scene};
+
+use crate::camera_ui;
+use crate::cpu::{CpuJob, CpuWorker};
+use crate::dataset::{histogram, value_range, Dataset};
+use crate::engine::{FrameKey, GpuRenderer, Look, Phase, Progressive};
+use crate::methods::{integrator_options, RendererChoice, Settings, ViewIntegrator};
+use crate::present::{read_texture, Display, DisplayTexture};
+use crate::projection::ProjectRenderer;
+use crate::tf_editor::TfEditor;
+
+/// Histogram bins under the opacity curve.
+const HISTOGRAM_BINS: usize = 128;
+
+/// How the viewer starts.
+#[derive(Debug, Clone)]
+pub struct ViewerOptions {
+    /// Scalar field (default: the first).
+    pub field: Option<String>,
+    /// Transfer function (default: ParaView's default over the range).
+    pub tf: Option<TransferFunction>,
+    pub method: Method,
+    /// Opacity unit distance (default: ParaView's).
+    pub unit_distance: Option<f32>,
+    pub opacity_mode: OpacityMode,
+    /// Render pixels per display pixel (default: 1 on a GPU, 0.25 on a
+    /// CPU implementation such as lavapipe).
+    pub image_scale: Option<f32>,
+    /// Ray-casting time one display frame may take.
+    pub budget: Duration,
+    pub early_termination: f32,
+}
+
+impl Default for ViewerOptions {
+    fn default() -> Self {
+        ViewerOptions {
+            field: None,
+            tf: None,
+            method: Method::Ppi,
+            unit_distance: None,
+            opacity_mode: OpacityMode::Exact,
+            image_scale: None,
+            budget: Duration::from_millis(40),
+            early_termination: 1.0,
+        }
+    }
+}
+
+/// The viewer.
+pub struct ViewerApp {
+    pub(crate) dataset: Dataset,
+    pub(crate) scene: Arc<Scene>,
+    pub(crate) range: (f32, f32),
+    pub(crate) gpu: GpuRenderer,
+    render_state: egui_wgpu::RenderState,
+    pub(crate) progressive: Progressive,
+    display: Option<(DisplayTexture, egui::TextureId)>,
+    pub settings: Settings,
+    /// The settings the integrators were made for.
+    applied: Settings,
+    pub(crate) tf_editor: TfEditor,
+    pub(crate) views: Vec<ViewIntegrator>,
+    /// What the last transfer-function change cost, per view.
+    pub(crate) tf_notes: Vec<String>,
+    generation: u64,
+    pub(crate) camera: Option<Camera>,
+    pub(crate) reset_camera: bool,
+    pub(crate) cpu: CpuWorker,
+    /// The cell projection, prepared when first picked.
+    projection: Option<ProjectRenderer>,
+    /// The key of the frame a CPU or projection frame was shown for.
+    external_shown: Option<FrameKey>,
+    pub(crate) key: Option<FrameKey>,
+    pub error: Option<String>,
+    pub(crate) screenshot_path: String,
+    pub(crate) screenshot_message: Option<(bool, String)>,
+    /// Display frame interval while frames are being made (ms, smoothed).
+    pub(crate) ui_ms: Option<f64>,
+    last_frame: Option<Instant>,
+}
+
+impl ViewerApp {
+    /// The viewer on eframe's wgpu device (the ray caster shares it).
+    pub fn new(
+        cc: &eframe::CreationContext<'_>,
+        dataset: Dataset,
+        options: ViewerOptions,
+    ) -> anyhow::Result<ViewerApp> {
+        let render_state = cc
+            .wgpu_render_state
+            .clone()
+            .context("the viewer needs eframe's wgpu renderer")?;
+        let ctx = tetray_gpu::GpuContext::from_device(
+            render_state.device.clone(),
+            render_state.queue.clone(),
+            render_state.adapter.get_info(),
+        );
+        let fields = dataset.field_names();
+        let field = match options.field {
+            Some(name) if fields.contains(&name) => name,
+            Some(name) => anyhow::bail!(
+                "--scalar {name:?}: {} has no such field; it has {}",
+                dataset.name,
+                fields.join(", ")
+            ),
+            None => fields
+                .first()
+                .cloned()
+                .with_context(|| format!("{} has no point scalar field", dataset.name))?,
+        };
+        let scene = dataset.scene(&field)?;
+        let range = value_range(&scene.scalar);
+        let tf = options
+            .tf
+            .unwrap_or_else(|| TransferFunction::default_for_range(range.0, range.1));
+        let tf_editor = TfEditor::new(&tf, range, histogram(&scene.scalar, range, HISTOGRAM_BINS));
+        let image_scale = options
+            .image_scale
+            .unwrap_or(if ctx.is_cpu() { 0.25 } else { 1.0 });
+        let settings = Settings {
+            renderer: RendererChoice::GpuRaycast,
+            methods: [options.method, Method::Exact],
+            compare: false,
+            display: Display::Divider,
+            divider: 0.5,
+            diff_scale: 0.05,
+            unit_distance: options.unit_distance.unwrap_or(dataset.unit_distance),
+            opacity_mode: options.opacity_mode,
+            early_termination: options.early_termination,
+            image_scale,
+            field,
+            background: [0.0; 3],
+            show_stats: true,
+        };
+        let gpu = GpuRenderer::new(ctx, &scene)?;
+        let mut app = ViewerApp {
+            dataset,
+            scene: Arc::new(scene),
+            range,
+            gpu,
+            render_state,
+            progressive: Progressive::new(options.budget),
+            display: None,
+            applied: settings.clone(),
+            settings,
+            tf_editor,
+            views: Vec::new(),
+            tf_notes: Vec::new(),
+            generation: 0,
+            camera: None,
+            reset_camera: false,
+            cpu: CpuWorker::default(),
+            projection: None,
+            external_shown: None,
+            key: None,
+            error: None,
+            screenshot_path: "tetray-view.png".to_string(),
+            screenshot_message: None,
+            ui_ms: None,
+            last_frame: None,
+        };
+        app.rebuild_integrators()?;
+        Ok(app)
+    }
+
+    /// The adapter the views render on.
+    pub fn adapter_name(&self) -> String {
+        self.gpu.ctx.adapter_name()
+    }
+
+    /// Whether the current frame is finished (nothing left to render).
+    pub fn is_idle(&self) -> bool {
+        self.key.is_some()
+            && self.progressive.phase() == Phase::Done
+            && !self.cpu.busy()
+            && (self.settings.renderer == RendererChoice::GpuRaycast
+                || self.external_shown == self.key)
+    }
+
+    /// The statistics of the last finished frame.
+    pub fn frame_report(&self) -> Option<crate::engine::FrameReport> {
+        self.progressive.report
+    }
+
+    /// Size of the last preview shown while the view changed.
+    pub fn preview_size(&self) -> Option<(u32, u32)> {
+        self.progressive.preview_size()
+    }
+
+    /// The camera of the view (once the first frame has sized it).
+    pub fn camera(&self) -> Option<Camera> {
+        self.camera
+    }
+
+    /// What is on screen: the display texture read back (width, height,
+    /// RGBA8 row-major, row 0 at the top). For tests and checks; the
+    /// display itself never leaves the GPU.
+    pub fn displayed_image(&self) -> anyhow::Result<(u32, u32, Vec<[u8; 4]>)> {
+        let (texture, _) = self.display.as_ref().context("nothing displayed yet")?;
+        let (w, h) = texture.size();
+        Ok((w, h, read_texture(&self.gpu.ctx, texture)?))
+    }
+
+    /// The transfer function being edited.
+    pub fn transfer_function(&self) -> anyhow::Result<TransferFunction> {
+        self.tf_editor.transfer_function()
+    }
+
+    /// Makes the integrators of the views for the current settings and
+    /// transfer function; on failure the previous ones stay.
+    pub(crate) fn rebuild_integrators(&mut self) -> anyhow::Result<()> {
+        let tf = self.tf_editor.transfer_function()?;
+        let options = integrator_options(&self.settings, self.dataset.chord, self.range);
+        let count = if self.settings.compare { 2 } else { 1 };
+        let views = self.settings.methods[..count]
+            .iter()
+            .map(|&m| ViewIntegrator::new(&self.gpu.ctx, m, &tf, &options))
+            .collect::<anyhow::Result<Vec<_>>>()?;
+        self.tf_notes = views.iter().map(ViewIntegrator::update_note).collect();
+        self.views = views;
+        self.applied = self.settings.clone();
+        self.generation += 1;
+        Ok(())
+    }
+
+    /// A new active field: scene, upload, histogram and a default
+    /// transfer function over its range.
+    pub(crate) fn change_field(&mut self, field: &str) -> anyhow::Result<()> {
+        let scene = self.dataset.scene(field)?;
+        self.gpu.set_scene(&scene)?;
+        self.projection = None;
+        self.range = value_range(&scene.scalar);
+        let (lo, hi) = self.range;
+        let tf = TransferFunction::default_for_range(lo, hi);
+        let mut editor = TfEditor::new(
+            &tf,
+            self.range,
+            histogram(&scene.scalar, self.range, HISTOGRAM_BINS),
+        );
+        editor.preset_path = std::mem::take(&mut self.tf_editor.preset_path);
+        editor.rescale = self.tf_editor.rescale;
+        self.tf_editor = editor;
+        self.scene = Arc::new(scene);
+        self.rebuild_integrators()
+    }
+
+    /// Applies settings changed in the panel since the integrators were made.
+    pub(crate) fn apply_settings(&mut self, tf_changed: bool) {
+        let (s, a) = (&self.settings, &self.applied);
+        let renderer_changed = s.renderer != a.renderer;
+        let field_changed = s.field != a.field;
+        let rebuild = tf_changed
+            || s.methods != a.methods
+            || s.compare != a.compare
+            || s.unit_distance != a.unit_distance
+            || s.opacity_mode != a.opacity_mode;
+        let changed = *s != *a;
+        if renderer_changed {
+            // The other renderer's frame: start over.
+            self.generation += 1;
+        }
+        let result = if field_changed {
+            let field = self.settings.field.clone();
+            self.change_field(&field)
+        } else if rebuild {
+            self.rebuild_integrators()
+        } else {
+            self.applied = self.settings.clone();
+            Ok(())
+        };
+        match result {
+            Err(e) => {
+                self.error = Some(format!("{e:#}"));
+                // Keep what renders: the settings the integrators were made for.
+                self.settings = self.applied.clone();
+            }
+            Ok(()) if tf_changed || changed => self.error = None,
+            Ok(()) => {}
+        }
+    }
+
+    fn look(&self) -> Look {
+        Look {
+            display: self.settings.display,
+            divider: self.settings.divider,
+            background: Vec3::from(self.settings.background),
+            diff_scale: self.settings.diff_scale,
+        }
+    }
+
+    /// The image view: sizes the frame, handles the camera, advances the
+    /// frame and draws it with its overlays.
+    fn view(&mut self, ui: &mut egui::Ui) {
+        let rect = ui.available_rect_before_wrap();
+        if rect.width() < 1.0 || rect.height() < 1.0 {
+            return;
+        }
+        let ppp = ui.ctx().pixels_per_point();
+        let scale = self.settings.image_scale.clamp(0.05, 2.0);
+        let size = (
+            ((rect.width() * ppp * scale).round() as u32).max(1),
+            ((rect.height() * ppp * scale).round() as u32).max(1),
+        );
+        let response = ui.allocate_rect(rect, Sense::click_and_drag());
+        self.handle_camera(ui, &response, rect, size);
+        let Some(camera) = self.camera else {
+            return;
+        };
+        let views = self.views.len() as u32;
+        let key = FrameKey {
+            camera,
+            size,
+            early_termination: self.settings.early_termination,
+            generation: self.generation,
+            views,
+        };
+        let still = self.key.as_ref() == Some(&key);
+        self.key = Some(key.clone());
+        let more = match self.advance_frame(&key, still) {
+            Ok(more) => more,
+            Err(e) => {
+                self.error = Some(format!("{e:#}"));
+                false
+            }
+        };
+        if let Some((_, id)) = &self.display {
+            ui.painter().image(
+                *id,
+                rect,
+                Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0)),
+                egui::Color32::WHITE,
+            );
+        }
+        crate::overlay::draw(self, ui, rect);
+        if more {
+            if self.cpu.busy() {
+                ui.ctx().request_repaint_after(Duration::from_millis(50));
+            } else {
+                ui.ctx().request_repaint();
+            }
+        }
+    }
+
+    fn handle_camera(
+        &mut self,
+        ui: &egui::Ui,
+        response: &egui::Response,
+        rect: Rect,
+        size: (u32, u32),
+    ) {
+        let (lo, hi) = self.scene.bounds();
+        let aspect = size.0 as f32 / size.1 as f32;
+        if self.camera.is_none() || self.reset_camera {
+            let mut camera = self.camera.unwrap_or_default();
+            match camera.reset(lo, hi, aspect) {
+                Ok(()) => self.camera = Some(camera),
+                Err(e) => self.error = Some(format!("cannot fit the camera to the mesh: {e}")),
+            }
+            self.reset_camera = false;
+        }
+        let Some(camera) = self.camera.as_mut() else {
+            return;
+        };
+        let delta = response.drag_delta();
+        let view = rect.size();
+        let shift = ui.input(|i| i.modifiers.shift);
+        let result = if response.dragged_by(PointerButton::Primary) && !shift {
+            camera_ui::orbit(camera, delta, view)
+        } else if response.dragged_by(PointerButton::Secondary)
+            || response.dragged_by(PointerButton::Middle)
+            || (response.dragged_by(PointerButton::Primary) && shift)
+        {
+            camera_ui::pan(camera, delta, view)
+        } else {
+            Ok(())
+        };
+        let scroll = if response.hovered() {
+            ui.input(|i| i.smooth_scroll_delta().y)
+        } else {
+            0.0
+        };
+        let result = result.and_then(|()| {
+            if scroll != 0.0 {
+                camera_ui::dolly(camera, scroll / 50.0)
+            } else {
+                Ok(())
+            }
+        });
+        if let Err(e) = result {
+            self.error = Some(format!("camera: {e}"));
+        }
+    }
+
+    /// Does this display frame's rendering; returns whether more is left.
+    fn advance_frame(&mut self, key: &FrameKey, still: bool) -> anyhow::Result<bool> {
+        self.ensure_display(key.size);
+        let look = self.look();
+        let (output, _) = self.display.as_ref().context("no display texture")?;
+        let integrators: Vec<_> = self.views.iter().map(|v| &v.gpu).collect();
+        let renderer = self.settings.renderer;
+        let shown = self.external_shown.as_ref() == Some(key);
+        let gpu = &self.gpu;
+        let mut more = match renderer {
+            RendererChoice::GpuRaycast => {
+                self.progressive
+                    .advance(gpu, key, &integrators, &look, output, true)?
+            }
+            // A CPU or projection frame is shown: only the display pass
+            // may run again.
+            _ if shown => {
+                self.progressive
+                    .advance(gpu, key, &integrators, &look, output, false)?;
+                false
+            }
+            RendererChoice::Projection(sort) => {
+                if self.projection.is_none() {
+                    self.projection = Some(ProjectRenderer::new(&gpu.ctx, &self.scene)?);
+                }
+                let projection = self.projection.as_mut().context("no projection")?;
+                // Follow the camera when a frame fits the budget; else
+                // ray-cast previews until it stops.
+                let fast = projection
+                    .last_frame
+                    .is_some_and(|t| t <= self.progressive.pacer.budget);
+                if still || fast {
+                    let (images, report) = projection.render(&gpu.ctx, key, sort, &integrators)?;
+                    self.progressive
+                        .show_frames(gpu, key, &images, report, &look, output)?;
+                    self.external_shown = Some(key.clone());
+                    false
+                } else {
+                    self.progressive
+                        .advance(gpu, key, &integrators, &look, output, false)?;
+                    true
+                }
+            }
+            RendererChoice::CpuReference => {
+                self.progressive
+                    .advance(gpu, key, &integrators, &look, output, false)?
+            }
+        };
+        let cpu_mode = renderer == RendererChoice::CpuReference;
+        if let Some(result) = self.cpu.poll() {
+            let frame = result.context("the CPU reference render")?;
+            if &frame.key == key && cpu_mode {
+                self.progressive.show_frames(
+                    gpu,
+                    key,
+                    &frame.images,
+                    frame.report,
+                    &look,
+                    output,
+                )?;
+                self.external_shown = Some(key.clone());
+            }
+        }
+        if cpu_mode && self.external_shown.as_ref() != Some(key) {
+            if still && !self.cpu.is_working_on(key) {
+                self.cpu.request(CpuJob {
+                    key: key.clone(),
+                    scene: Arc::clone(&self.scene),
+                    integrators: self.views.iter().map(|v| Arc::clone(&v.cpu)).collect(),
+                });
+            }
+            more = true;
+        }
+        self.tick(more);
+        Ok(more || self.cpu.busy())
+    }
+
+    /// Times display frames while frames are being made.
+    fn tick(&mut self, busy: bool) {
+        let now = Instant::now();
+        if let (Some(last), true) = (self.last_frame, busy) {
+            let ms = now.duration_since(last).as_secs_f64() * 1e3;
+            self.ui_ms = Some(self.ui_ms.map_or(ms, |old| 0.8 * old + 0.2 * ms));
+        }
+        self.last_frame = busy.then_some(now);
+    }
+
+    /// A display texture of `size`, registered with egui.
+    fn ensure_display(&mut self, size: (u32, u32)) {
+        if self.display.as_ref().map(|(t, _)| t.size()) == Some(size) {
+            return;
+        }
+        let texture = DisplayTexture::new(&self.gpu.ctx, size.0, size.1);
+        let mut renderer = self.render_state.renderer.write();
+        let id = match &self.display {
+            Some((_, id)) => {
+                renderer.update_egui_texture_from_wgpu_texture(
+                    &self.render_state.device,
+                    &texture.view,
+                    wgpu::FilterMode::Linear,
+                    *id,
+                );
+                *id
+            }
+            None => renderer.register_native_texture(
+                &self.render_state.device,
+                &texture.view,
+                wgpu::FilterMode::Linear,
+            ),
+        };
+        self.display = Some((texture, id));
+    }
+
+    /// Saves the current frame (finished first): PNG as displayed, EXR as
+    /// the float image of each view (B's beside A's, `-b` before the
+    /// extension).
+    pub fn save_screenshot(
+        &mut self,
+        path: &std::path::Path,
+    ) -> anyhow::Result<Vec<std::path::PathBuf>> {
+        let key = self.key.clone().context("nothing rendered yet")?;
+        // A finished frame (the CPU's, when shown) is read as it is.
+        let integrators: Vec<_> = self.views.iter().map(|v| &v.gpu).collect();
+        let images = self
+            .progressive
+            .finished_images(&self.gpu, &key, &integrators)?;
+        crate::screenshot::save(path, &images, &key, &self.look())
+    }
+}
+
+impl eframe::App for ViewerApp {
+    fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
+        egui::Panel::left("controls")
+            .resizable(true)
+            .default_size(320.0)
+            .show(ui, |ui| {
+                egui::ScrollArea::vertical().show(ui, |ui| {
+                    let tf_changed = crate::panel::controls(self, ui);
+                    self.apply_settings(tf_changed);
+                });
+            });
+        egui::CentralPanel::default()
+            .frame(egui::Frame::NONE)
+            .show(ui, |ui| self.view(ui));
+    }
+}

@@ -1,0 +1,168 @@
+//! The CPU reference ray caster for still frames: it renders on a thread
+//! of its own (rayon inside), one frame at a time, so the window stays
+//! live; a request made while one runs waits for it and replaces any
+//! request still waiting.
+
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::mpsc::{channel, Receiver};
+use std::sync::Arc;
+use std::thread::JoinHandle;
+use std::time::Duration;
+
+use tetray_gpu::GpuStats;
+use tetray_integrate::ScalarIntegrator;
+use tetray_raycast::{render_scalar_with_progress, Image, RenderOptions, Scene};
+
+use crate::engine::{FrameKey, FrameReport};
+
+/// A still frame to render: one image per integrator.
+#[derive(Clone)]
+pub struct CpuJob {
+    pub key: FrameKey,
+    pub scene: Arc<Scene>,
+    pub integrators: Vec<Arc<ScalarIntegrator>>,
+}
+
+/// What came back.
+pub struct CpuFrame {
+    pub key: FrameKey,
+    pub images: Vec<Image>,
+    pub report: FrameReport,
+}
+
+struct Running {
+    key: FrameKey,
+    handle: JoinHandle<()>,
+    result: Receiver<anyhow::Result<CpuFrame>>,
+    rows_done: Arc<AtomicUsize>,
+    rows: usize,
+}
+
+/// At most one render running, at most one waiting.
+#[derive(Default)]
+pub struct CpuWorker {
+    running: Option<Running>,
+    waiting: Option<CpuJob>,
+}
+
+impl CpuWorker {
+    /// Asks for `job`'s frame unless it is the one running or waiting.
+    pub fn request(&mut self, job: CpuJob) {
+        let running = self.running.as_ref().map(|r| &r.key);
+        if running == Some(&job.key) || self.waiting.as_ref().map(|j| &j.key) == Some(&job.key) {
+            return;
+        }
+        if self.running.is_none() {
+            self.running = Some(spawn(job));
+        } else {
+            self.waiting = Some(job);
+        }
+    }
+
+    /// Whether a frame for `key` is running or waiting.
+    pub fn is_working_on(&self, key: &FrameKey) -> bool {
+        self.running.as_ref().is_some_and(|r| &r.key == key)
+            || self.waiting.as_ref().is_some_and(|j| &j.key == key)
+    }
+
+    pub fn busy(&self) -> bool {
+        self.running.is_some()
+    }
+
+    /// Fraction of the running frame's rows done.
+    pub fn progress(&self) -> Option<f32> {
+        self.running
+            .as_ref()
+            .map(|r| r.rows_done.load(Ordering::Relaxed) as f32 / r.rows.max(1) as f32)
+    }
+
+    /// A finished frame, if one is ready (starting the waiting job).
+    pub fn poll(&mut self) -> Option<anyhow::Result<CpuFrame>> {
+        let running = self.running.as_ref()?;
+        if !running.handle.is_finished() {
+            return None;
+        }
+        let running = self.running.take()?;
+        let result = running
+            .result
+            .recv()
+            .unwrap_or_else(|_| Err(anyhow::anyhow!("the CPU renderer stopped")));
+        let _ = running.handle.join();
+        if let Some(job) = self.waiting.take() {
+            self.running = Some(spawn(job));
+        }
+        Some(result)
+    }
+}
+
+fn spawn(job: CpuJob) -> Running {
+    let (sender, result) = channel();
+    let rows_done = Arc::new(AtomicUsize::new(0));
+    let height = job.key.size.1;
+    let views = job.integrators.len();
+    let counter = Arc::clone(&rows_done);
+    let key = job.key.clone();
+    let handle = std::thread::spawn(move || {
+        let _ = sender.send(render(&job, &counter));
+    });
+    Running {
+        key,
+        handle,
+        result,
+        rows_done,
+        rows: height as usize * views.max(1),
+    }
+}
+
+fn render(job: &CpuJob, rows_done: &AtomicUsize) -> anyhow::Result<CpuFrame> {
+    let (width, height) = job.key.size;
+    let options = RenderOptions {
+        width,
+        height,
+        early_termination: job.key.early_termination,
+        max_steps_per_ray: None,
+        threads: None,
+    };
+    let mut images = Vec::new();
+    let mut stats = [GpuStats::default(); 2];
+    let mut elapsed = Duration::ZERO;
+    for (view, integrator) in job.integrators.iter().enumerate() {
+        let base = view * height as usize;
+        let progress = |done: usize, _rows: usize| rows_done.store(base + done, Ordering::Relaxed);
+        let out = render_scalar_with_progress(
+            &job.scene,
+            &job.key.camera,
+            integrator,
+            &options,
+            Some(&progress),
+        )?;
+        let s = out.stats;
+        if let Some(slot) = stats.get_mut(view) {
+            *slot = GpuStats {
+                rays: s.rays,
+                rays_hit: s.rays_hit,
+                segments: s.segments,
+                steps: s.steps,
+                entries: s.entries,
+                steps_bound_hits: s.steps_bound_hits,
+                walk_failures: s.walk_failures,
+                gpu_time: None,
+                wall_time: s.elapsed,
+            };
+        }
+        elapsed += s.elapsed;
+        images.push(out.image);
+    }
+    Ok(CpuFrame {
+        key: job.key.clone(),
+        report: FrameReport {
+            size: (width, height),
+            views: images.len() as u32,
+            elapsed,
+            batches: 1,
+            stats,
+            renderer: "CPU reference",
+        },
+        images,
+    })
+}

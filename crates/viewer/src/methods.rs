@@ -1,0 +1,174 @@
+//! The view settings (the pickers) and the integrators they make: each
+//! view's method set up for the transfer function on the CPU (tables built
+//! there) and uploaded for the GPU, with the time each took, so that the UI
+//! can show that partial pre-integration rebuilds nothing when the transfer
+//! function changes while full pre-integration rebuilds its table.
+
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use anyhow::Context;
+use tetray_gpu::{layout::method_code, GpuContext, GpuIntegrator};
+use tetray_integrate::{
+    IntegratorOptions, Method, OpacityMode, ScalarIntegrator, TransferFunction,
+};
+use tetray_project::SortKind;
+
+use crate::present::Display;
+
+/// The renderers the viewer can show.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RendererChoice {
+    /// The wgpu compute ray caster, every display frame.
+    GpuRaycast,
+    /// Cell projection (crates/project) with a visibility sort: whole
+    /// frames; the ray caster shows previews while the view changes when a
+    /// frame is slower than the budget.
+    Projection(SortKind),
+    /// The CPU reference ray caster for still frames; the GPU shows
+    /// previews while the view changes.
+    CpuReference,
+}
+
+impl RendererChoice {
+    pub const ALL: [RendererChoice; 5] = [
+        RendererChoice::GpuRaycast,
+        RendererChoice::Projection(SortKind::Centroid),
+        RendererChoice::Projection(SortKind::Mpvo),
+        RendererChoice::Projection(SortKind::Mpvonc),
+        RendererChoice::CpuReference,
+    ];
+
+    pub fn label(self) -> &'static str {
+        match self {
+            RendererChoice::GpuRaycast => "GPU ray caster",
+            RendererChoice::Projection(SortKind::Centroid) => "cell projection, centroid sort",
+            RendererChoice::Projection(SortKind::Mpvo) => "cell projection, MPVO sort",
+            RendererChoice::Projection(SortKind::Mpvonc) => "cell projection, MPVONC sort",
+            RendererChoice::CpuReference => "CPU reference (still frame)",
+        }
+    }
+
+    /// Whether it can integrate with `method` (the GPU renderers share the
+    /// kernel's methods: every one but the f64 references).
+    pub fn supports(self, method: Method) -> bool {
+        match self {
+            RendererChoice::GpuRaycast | RendererChoice::Projection(_) => {
+                method_code(method).is_some()
+            }
+            RendererChoice::CpuReference => true,
+        }
+    }
+}
+
+/// Everything the pickers set.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Settings {
+    pub renderer: RendererChoice,
+    pub methods: [Method; 2],
+    pub compare: bool,
+    pub display: Display,
+    pub divider: f32,
+    pub diff_scale: f32,
+    pub unit_distance: f32,
+    pub opacity_mode: OpacityMode,
+    pub early_termination: f32,
+    /// Render pixels per display pixel (per side).
+    pub image_scale: f32,
+    pub field: String,
+    pub background: [f32; 3],
+    pub show_stats: bool,
+}
+
+/// One view's integrator, on the CPU and the GPU.
+pub struct ViewIntegrator {
+    pub method: Method,
+    pub cpu: Arc<ScalarIntegrator>,
+    /// The GPU integrator: the method's own, or for the f64 references
+    /// (no kernel) the closed form of the same model, used for previews.
+    pub gpu: GpuIntegrator,
+    pub gpu_method: Method,
+    /// Table building in the integrator's setup (the pre-integration
+    /// table; the Psi table is built once per process).
+    pub setup: Duration,
+    /// Packing and uploading for the GPU.
+    pub upload: Duration,
+}
+
+/// The method the GPU renders in place of `method`.
+pub fn gpu_stand_in(method: Method) -> Method {
+    match method {
+        Method::Reference => Method::Exact,
+        Method::ReferenceOpacity => Method::LinOpacity,
+        other => other,
+    }
+}
+
+/// The integrator options of `settings` for a mesh with mean chord `chord`
+/// over the scalar range `range` (as `tetray render` sets them).
+pub fn integrator_options(settings: &Settings, chord: f32, range: (f32, f32)) -> IntegratorOptions {
+    IntegratorOptions {
+        unit_distance: settings.unit_distance,
+        opacity_mode: settings.opacity_mode,
+        riemann_step: chord / 4.0,
+        preintegration_length: chord,
+        scalar_range: Some(range),
+        ..IntegratorOptions::default()
+    }
+}
+
+impl ViewIntegrator {
+    pub fn new(
+        ctx: &GpuContext,
+        method: Method,
+        tf: &TransferFunction,
+        options: &IntegratorOptions,
+    ) -> anyhow::Result<ViewIntegrator> {
+        let cpu = ScalarIntegrator::new(method, tf, options)
+            .with_context(|| format!("setting up the {method} integrator"))?;
+        let setup = cpu.setup_time();
+        let gpu_method = gpu_stand_in(method);
+        let start = Instant::now();
+        let gpu = if gpu_method == method {
+            GpuIntegrator::new(ctx, &cpu)
+        } else {
+            let stand_in = ScalarIntegrator::new(gpu_method, tf, options)
+                .with_context(|| format!("setting up the {gpu_method} integrator"))?;
+            GpuIntegrator::new(ctx, &stand_in)
+        }
+        .with_context(|| format!("uploading the {gpu_method} integrator"))?;
+        Ok(ViewIntegrator {
+            method,
+            cpu: Arc::new(cpu),
+            gpu,
+            gpu_method,
+            setup,
+            upload: start.elapsed(),
+        })
+    }
+
+    /// What a transfer-function change cost, in words.
+    pub fn update_note(&self) -> String {
+        let ms = |d: Duration| d.as_secs_f64() * 1e3;
+        match self.method {
+            Method::Preintegrated => format!(
+                "{}: pre-integration table rebuilt in {:.1} ms, uploaded in {:.1} ms",
+                self.method,
+                ms(self.setup),
+                ms(self.upload)
+            ),
+            Method::Ppi => format!(
+                "ppi: no table rebuild (one Psi table per process): set up in {:.2} ms, \
+                 uploaded in {:.2} ms",
+                ms(self.setup),
+                ms(self.upload)
+            ),
+            _ => format!(
+                "{}: no table, knots set up in {:.2} ms, uploaded in {:.2} ms",
+                self.method,
+                ms(self.setup),
+                ms(self.upload)
+            ),
+        }
+    }
+}
