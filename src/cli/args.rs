@@ -8,6 +8,7 @@ use clap::{Args, ValueEnum};
 use glam::Vec3;
 use tetray_boundary_bvh::BuildPreset;
 use tetray_integrate::{Method, OpacityMode};
+use tetray_project::SortKind;
 
 /// Which mesh to load. No path means the embedded Blunt Fin dataset.
 #[derive(Debug, Clone, Default, Args)]
@@ -136,6 +137,9 @@ pub enum RendererArg {
     /// The wgpu compute ray caster (the adapter from WGPU_ADAPTER_NAME /
     /// WGPU_BACKEND, else the default).
     Gpu,
+    /// Cell projection: projected tetrahedra on wgpu render pipelines,
+    /// composited in the order of --sort (same adapter choice as gpu).
+    Project,
 }
 
 /// The renderer and its walk limits.
@@ -159,6 +163,16 @@ pub struct WalkArgs {
     /// very-slow.
     #[arg(long, value_name = "PRESET", default_value = "very-slow", value_parser = parse_bvh_preset)]
     pub bvh_preset: BuildPreset,
+    /// Visibility sort of --renderer project: centroid (cell-centre depth,
+    /// as VTK's projected tetrahedra), mpvo (Williams; exact on convex,
+    /// connected meshes), mpvonc (its heuristic for nonconvex meshes).
+    #[arg(long, value_name = "SORT", default_value = "mpvonc", value_parser = parse_sort)]
+    pub sort: SortKind,
+    /// --renderer project: draw each cell once, the transfer function
+    /// sampled at its segment ends, instead of once per knot interval it
+    /// spans (adaptive transfer-function sampling, section 4.3).
+    #[arg(long)]
+    pub no_adaptive_tf: bool,
 }
 
 /// Image size, file and background.
@@ -209,6 +223,12 @@ impl RenderArgs {
 pub fn parse_method(text: &str) -> Result<Method, String> {
     text.parse()
         .map_err(|e: tetray_integrate::UnknownMethod| e.to_string())
+}
+
+/// A visibility sort by name.
+pub fn parse_sort(text: &str) -> Result<SortKind, String> {
+    text.parse()
+        .map_err(|e: tetray_project::sort::UnknownSort| e.to_string())
 }
 
 fn parse_bvh_preset(text: &str) -> Result<BuildPreset, String> {
@@ -339,6 +359,10 @@ mod tests {
         assert!(parse_positive("0").is_err());
         assert!(parse_early_termination("1.5").is_err());
         assert_eq!(parse_method("PPI"), Ok(Method::Ppi));
+        assert_eq!(parse_sort("MPVO"), Ok(SortKind::Mpvo));
+        assert!(parse_sort("bsp")
+            .unwrap_err()
+            .contains("centroid, mpvo, mpvonc"));
         assert!(parse_method("simpson")
             .unwrap_err()
             .contains("expected one of"));

@@ -65,6 +65,29 @@ struct BenchJson {
     load_s: f64,
     scene_s: f64,
     integrator_setup_s: f64,
+    /// --renderer project: its stages apart (ms_per_frame_* is their sum).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    projection: Option<ProjectionJson>,
+}
+
+#[derive(Debug, Serialize)]
+struct ProjectionJson {
+    sort: &'static str,
+    adaptive_tf: bool,
+    /// Visibility sort on the CPU (rayon).
+    sort_ms_median: f64,
+    /// Sorted cells to draws (pieces ordered within cells), CPU.
+    draw_list_ms_median: f64,
+    /// The render pass, by `draw_timing`.
+    draw_ms_median: f64,
+    draw_timing: &'static str,
+    /// Submission to read-back, all of it.
+    wall_ms_median: f64,
+    draws_per_frame: f64,
+    extra_draws_per_frame: f64,
+    /// Extra draws of adaptive sampling over one per cell, in percent.
+    extra_draws_percent: f64,
+    cycle_breaks: usize,
 }
 
 pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
@@ -88,6 +111,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         .render(&setup, &camera, &args.walk, args.size, None)
         .context("warm-up frame")?;
     let mut times_ms = Vec::with_capacity(args.frames as usize);
+    let mut stages: Vec<tetray_project::ProjectStats> = Vec::new();
     let (mut rays, mut segments, mut steps) = (0u64, 0u64, 0u64);
     let (mut bound_hits, mut failures) = (0u64, 0u64);
     for frame in 0..args.frames {
@@ -101,6 +125,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         steps += stats.steps;
         bound_hits += stats.steps_bound_hits;
         failures += stats.walk_failures;
+        stages.extend(stats.project);
         camera.azimuth(orbit_step).context("orbiting the camera")?;
         camera
             .orthogonalize_view_up()
@@ -153,9 +178,47 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         load_s: setup.load_time.as_secs_f64(),
         scene_s: setup.scene_time.as_secs_f64(),
         integrator_setup_s: setup.integrator_time.as_secs_f64(),
+        projection: (!stages.is_empty()).then(|| projection_json(&stages, &args.walk)),
     };
     println!("{}", serde_json::to_string_pretty(&json)?);
     Ok(())
+}
+
+/// Medians of the projection's stages over the frames.
+fn projection_json(stages: &[tetray_project::ProjectStats], walk: &WalkArgs) -> ProjectionJson {
+    let ms = |f: &dyn Fn(&tetray_project::ProjectStats) -> std::time::Duration| {
+        median(
+            &stages
+                .iter()
+                .map(|s| f(s).as_secs_f64() * 1e3)
+                .collect::<Vec<_>>(),
+        )
+    };
+    let mean = |f: &dyn Fn(&tetray_project::ProjectStats) -> usize| {
+        stages.iter().map(f).sum::<usize>() as f64 / stages.len() as f64
+    };
+    let (draws, extra, tets) = (
+        mean(&|s| s.draws),
+        mean(&|s| s.extra_draws),
+        mean(&|s| s.tets),
+    );
+    ProjectionJson {
+        sort: walk.sort.name(),
+        adaptive_tf: stages[0].adaptive_tf,
+        sort_ms_median: ms(&|s| s.sort_time),
+        draw_list_ms_median: ms(&|s| s.expand_time),
+        draw_ms_median: ms(&|s| s.draw_time),
+        draw_timing: if stages[0].draw_timed_on_gpu {
+            "gpu timestamp queries"
+        } else {
+            "wall clock"
+        },
+        wall_ms_median: ms(&|s| s.wall_time),
+        draws_per_frame: draws,
+        extra_draws_per_frame: extra,
+        extra_draws_percent: 100.0 * extra / tets.max(1.0),
+        cycle_breaks: stages.iter().map(|s| s.cycle_breaks).max().unwrap_or(0),
+    }
 }
 
 /// The median of a non-empty list.

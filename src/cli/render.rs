@@ -58,6 +58,9 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         describe_stats(&frame.stats, size),
         engine.adapter()
     );
+    if let Some(project) = &frame.stats.project {
+        println!("{}", describe_projection(project, args.walk.sort.name()));
+    }
     warn_about(&frame.stats);
     write_image(&frame.image, output, format, args.output.background)?;
     let shown = std::path::absolute(output).unwrap_or_else(|_| output.clone());
@@ -77,6 +80,28 @@ pub fn describe_stats(stats: &FrameStats, (width, height): (u32, u32)) -> String
         stats.steps,
         stats.entries,
         stats.segments as f64 / seconds.max(1e-12) / 1e6
+    )
+}
+
+/// One line of the projection's stages.
+pub fn describe_projection(stats: &tetray_project::ProjectStats, sort: &str) -> String {
+    let ms = |d: Duration| d.as_secs_f64() * 1e3;
+    format!(
+        "projection: {sort} sort {:.1} ms, draw list {:.1} ms, render pass {:.1} ms ({}); \
+         {} draws for {} tetrahedra ({} extra for adaptive sampling, +{:.1}%), {} cycle breaks",
+        ms(stats.sort_time),
+        ms(stats.expand_time),
+        ms(stats.draw_time),
+        if stats.draw_timed_on_gpu {
+            "gpu timestamps"
+        } else {
+            "wall clock"
+        },
+        stats.draws,
+        stats.tets,
+        stats.extra_draws,
+        100.0 * stats.extra_draws as f64 / stats.tets.max(1) as f64,
+        stats.cycle_breaks
     )
 }
 

@@ -1,10 +1,11 @@
-//! The renderer behind `render` and `bench`: the CPU reference ray caster
-//! or the GPU one (`--renderer cpu|gpu|auto`).
+//! The renderer behind `render` and `bench`: the CPU reference ray caster,
+//! the GPU one, or the cell projection (`--renderer cpu|gpu|project|auto`).
 
 use std::time::Duration;
 
 use anyhow::{bail, Context};
 use tetray_gpu::{GpuContext, GpuIntegrator, GpuRaycaster, GpuRenderOptions, GpuScene};
+use tetray_project::{ProjectOptions, ProjectStats, Projection};
 use tetray_raycast::{render_scalar_with_progress, Camera, Image, RenderOptions};
 
 use super::args::{RendererArg, WalkArgs};
@@ -14,6 +15,14 @@ use super::scene::Setup;
 pub enum Engine {
     Cpu,
     Gpu(Box<GpuEngine>),
+    Project(Box<ProjectEngine>),
+}
+
+/// The cell projection with the mesh and integrator uploaded.
+pub struct ProjectEngine {
+    ctx: GpuContext,
+    integrator: GpuIntegrator,
+    projection: Projection,
 }
 
 /// The GPU ray caster with the mesh and integrator uploaded.
@@ -35,8 +44,11 @@ pub struct FrameStats {
     pub steps_bound_hits: u64,
     pub walk_failures: u64,
     /// Render time: the GPU pass by timestamp queries where the adapter has
-    /// them, else the wall time of the frame.
+    /// them, else the wall time of the frame; for the projection, its sort
+    /// and draw list (CPU) plus its render pass.
     pub elapsed: Duration,
+    /// The projection's own counters and stage times.
+    pub project: Option<ProjectStats>,
 }
 
 pub struct Frame {
@@ -62,6 +74,16 @@ impl Engine {
                 }
                 let ctx = GpuContext::new().context("--renderer gpu")?;
                 Engine::gpu(ctx, setup, log)
+            }
+            RendererArg::Project => {
+                if !gpu_method {
+                    bail!(
+                        "--integrator {}: the f64 reference has no GPU kernel; use --renderer cpu",
+                        setup.method
+                    );
+                }
+                let ctx = GpuContext::new().context("--renderer project")?;
+                Engine::project(ctx, setup, log)
             }
             RendererArg::Auto => {
                 if !gpu_method {
@@ -110,11 +132,33 @@ impl Engine {
         })))
     }
 
-    /// "cpu" or "gpu".
+    fn project(ctx: GpuContext, setup: &Setup, log: &dyn Fn(String)) -> anyhow::Result<Engine> {
+        let integrator = GpuIntegrator::new(&ctx, &setup.integrator)
+            .context("uploading the transfer function to the GPU")?;
+        let projection = Projection::new(&ctx, &setup.scene, &integrator)
+            .context("preparing the mesh for projection")?;
+        log(format!(
+            "renderer: project on {} into {:?} ({} tetrahedra, {:.1} MB; adaptive sampling \
+             would draw {} pieces)",
+            ctx.adapter_name(),
+            projection.projector().format(),
+            projection.scene.tet_count(),
+            projection.gpu_bytes() as f64 / 1e6,
+            projection.intervals.pieces
+        ));
+        Ok(Engine::Project(Box::new(ProjectEngine {
+            ctx,
+            integrator,
+            projection,
+        })))
+    }
+
+    /// "cpu", "gpu" or "project".
     pub fn name(&self) -> &'static str {
         match self {
             Engine::Cpu => "cpu",
             Engine::Gpu(_) => "gpu",
+            Engine::Project(_) => "project",
         }
     }
 
@@ -123,12 +167,17 @@ impl Engine {
         match self {
             Engine::Cpu => format!("cpu (rayon), {} threads", rayon::current_num_threads()),
             Engine::Gpu(gpu) => gpu.ctx.adapter_name(),
+            Engine::Project(p) => p.ctx.adapter_name(),
         }
     }
 
     /// Whether frame times come from GPU timestamp queries.
     pub fn gpu_timestamps(&self) -> bool {
-        matches!(self, Engine::Gpu(gpu) if gpu.ctx.timestamps)
+        match self {
+            Engine::Cpu => false,
+            Engine::Gpu(gpu) => gpu.ctx.timestamps,
+            Engine::Project(p) => p.ctx.timestamps,
+        }
     }
 
     /// One frame of `setup` from `camera`.
@@ -170,6 +219,7 @@ impl Engine {
                         steps_bound_hits: s.steps_bound_hits,
                         walk_failures: s.walk_failures,
                         elapsed: s.elapsed,
+                        project: None,
                     },
                 })
             }
@@ -196,6 +246,33 @@ impl Engine {
                         steps_bound_hits: s.steps_bound_hits,
                         walk_failures: s.walk_failures,
                         elapsed: s.frame_time(),
+                        project: None,
+                    },
+                })
+            }
+            Engine::Project(p) => {
+                let options = ProjectOptions {
+                    width,
+                    height,
+                    sort: walk.sort,
+                    adaptive_tf: !walk.no_adaptive_tf && setup.integrator.splits_at_knots(),
+                };
+                let out = p
+                    .projection
+                    .render(&p.ctx, &p.integrator, camera, &options)
+                    .context("projecting")?;
+                let s = out.stats;
+                let rays_hit = out.image.rgba.iter().filter(|p| p[3] > 0.0).count() as u64;
+                Ok(Frame {
+                    image: out.image,
+                    stats: FrameStats {
+                        rays: u64::from(width) * u64::from(height),
+                        rays_hit,
+                        segments: s.segments,
+                        steps: s.draws as u64,
+                        elapsed: s.sort_time + s.expand_time + s.draw_time,
+                        project: Some(s),
+                        ..FrameStats::default()
                     },
                 })
             }
