@@ -537,10 +537,18 @@ impl eframe::App for ViewerApp {
             .resizable(true)
             .default_size(320.0)
             .show(ui, |ui| {
-                egui::ScrollArea::vertical().show(ui, |ui| {
-                    let tf_changed = crate::panel::controls(self, ui);
-                    self.apply_settings(tf_changed);
-                });
+                // Scrolled by the wheel and the bar only: a drag in the panel
+                // belongs to the transfer-function handles under it.
+                egui::ScrollArea::vertical()
+                    .scroll_source(egui::scroll_area::ScrollSource {
+                        scroll_bar: true,
+                        mouse_wheel: true,
+                        ..egui::scroll_area::ScrollSource::NONE
+                    })
+                    .show(ui, |ui| {
+                        let tf_changed = crate::panel::controls(self, ui);
+                        self.apply_settings(tf_changed);
+                    });
             });
         egui::CentralPanel::default()
             .frame(egui::Frame::NONE)

@@ -174,8 +174,12 @@ impl TfEditor {
 
     fn opacity_plot(&mut self, ui: &mut egui::Ui) -> bool {
         let width = ui.available_width().max(100.0);
-        let (rect, background) =
+        let (outer, background) =
             ui.allocate_exact_size(Vec2::new(width, PLOT_HEIGHT), Sense::click());
+        // The data area is inset by a handle's size so that the end points
+        // are whole and clear of the panel's edge (its scroll bar and resize
+        // handle would take a drag there).
+        let rect = outer.shrink2(Vec2::new(HANDLE, HANDLE / 2.0));
         let axis = self.axis();
         let to_x = |s: f32| rect.left() + (s - axis.0) / (axis.1 - axis.0) * rect.width();
         let to_y = |a: f32| rect.bottom() - a * rect.height();
@@ -259,9 +263,11 @@ impl TfEditor {
 
     fn color_ramp(&mut self, ui: &mut egui::Ui) -> bool {
         let width = ui.available_width().max(100.0);
-        let (rect, ramp) =
+        let (outer, ramp) =
             ui.allocate_exact_size(Vec2::new(width, RAMP_HEIGHT + STOP_HEIGHT), Sense::click());
-        let strip = Rect::from_min_size(rect.min, Vec2::new(width, RAMP_HEIGHT));
+        // Inset as the opacity plot, so that both share the scalar axis.
+        let rect = outer.shrink2(Vec2::new(HANDLE, 0.0));
+        let strip = Rect::from_min_size(rect.min, Vec2::new(rect.width(), RAMP_HEIGHT));
         let axis = self.axis();
         let to_x = |s: f32| rect.left() + (s - axis.0) / (axis.1 - axis.0) * rect.width();
         let painter = ui.painter_at(rect.expand(HANDLE / 2.0));
