@@ -7,7 +7,7 @@ use std::time::{Duration, Instant};
 use anyhow::{bail, Context};
 use glam::Vec3;
 use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunction};
-use tetray_mesh::{LoadedMesh, TetMesh};
+use tetray_mesh::{mean_tet_chord, value_range, LoadedMesh};
 use tetray_raycast::{Camera, Scene};
 
 use super::args::{CameraArgs, IntegratorArgs, MeshArgs, WalkArgs};
@@ -26,31 +26,15 @@ pub struct MeshInput {
 }
 
 impl MeshInput {
-    /// Cells of the dataset as read, before non-tetrahedral cells were
-    /// split: what ParaView counts (hexahedra for a PLOT3D grid).
+    /// Cells of the dataset as read (see [`LoadedMesh::input_cells`]).
     pub fn input_cells(&self) -> usize {
-        let report = &self.loaded.report;
-        self.loaded.mesh.tets.len() - report.tets_from_split + report.cells_split
+        self.loaded.input_cells()
     }
 
-    /// ParaView's default ScalarOpacityUnitDistance (vtkSMBoundsDomain,
-    /// mode APPROXIMATE_CELL_LENGTH): the bounds diagonal divided by the cube
-    /// root of the dataset's cell count, the diagonal itself for no cells.
+    /// ParaView's default opacity unit distance (see
+    /// [`LoadedMesh::paraview_unit_distance`]).
     pub fn paraview_unit_distance(&self) -> f32 {
-        let (lo, hi) = self.loaded.mesh.bounds();
-        let diagonal = (hi - lo).as_dvec3().length();
-        let cells = self.input_cells() as f64;
-        let u = if cells > 0.0 {
-            diagonal / cells.cbrt()
-        } else {
-            diagonal
-        };
-        // A flat or single-point mesh has no length scale; 1 is VTK's default.
-        if u > 0.0 && u.is_finite() {
-            u as f32
-        } else {
-            1.0
-        }
+        self.loaded.paraview_unit_distance()
     }
 
     /// One line: what was loaded.
@@ -340,37 +324,6 @@ pub fn configure_threads(threads: Option<u16>) -> anyhow::Result<()> {
             .with_context(|| format!("--threads {threads}: cannot start the thread pool"))?;
     }
     Ok(())
-}
-
-/// Mean chord length of the tetrahedra: for random lines through a convex
-/// body it is 4 V / S (Cauchy), the typical length of a ray segment.
-pub fn mean_tet_chord(mesh: &TetMesh) -> f32 {
-    let mut sum = 0.0f64;
-    for tet in &mesh.tets {
-        let [a, b, c, d] = tet.map(|v| mesh.points[v as usize].as_dvec3());
-        let volume = (b - a).dot((c - a).cross(d - a)).abs() / 6.0;
-        let area =
-            |p: glam::DVec3, q: glam::DVec3, r: glam::DVec3| (q - p).cross(r - p).length() / 2.0;
-        let surface = area(a, b, c) + area(a, b, d) + area(a, c, d) + area(b, c, d);
-        if surface > 0.0 {
-            sum += 4.0 * volume / surface;
-        }
-    }
-    let chord = (sum / mesh.tets.len().max(1) as f64) as f32;
-    if chord > 0.0 && chord.is_finite() {
-        chord
-    } else {
-        1.0
-    }
-}
-
-/// Smallest and largest value (the values are finite: validated on load).
-pub fn value_range(values: &[f32]) -> (f32, f32) {
-    values
-        .iter()
-        .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &v| {
-            (lo.min(v), hi.max(v))
-        })
 }
 
 pub fn plural(n: usize) -> &'static str {

@@ -10,7 +10,8 @@ use tetray_integrate::{Method, TransferFunction};
 use tetray_viewer::{Dataset, ViewerOptions};
 
 use super::args::{parse_method, parse_positive, MeshArgs, OpacityModeArg};
-use super::scene::{load_mesh, value_range};
+use super::scene::load_mesh;
+use tetray_mesh::value_range;
 
 /// `tetray view`.
 #[derive(Debug, Clone, Args)]
@@ -122,8 +123,9 @@ fn parse_alpha(text: &str) -> Result<f32, String> {
 #[cfg(test)]
 mod tests {
     use super::super::args::MeshArgs;
-    use super::super::scene::{load_mesh, mean_tet_chord};
+    use super::super::scene::load_mesh;
     use super::*;
+    use tetray_mesh::mean_tet_chord;
 
     /// The viewer derives the unit distance and the tables' length as
     /// `render` does, so the same flags give the same image.

@@ -12,12 +12,13 @@ use tetray_raycast::{Camera, Scene};
 
 use crate::camera_ui;
 use crate::cpu::{CpuJob, CpuWorker};
-use crate::dataset::{histogram, value_range, Dataset};
+use crate::dataset::{histogram, Dataset};
 use crate::engine::{FrameKey, GpuRenderer, Look, Phase, Progressive};
 use crate::methods::{integrator_options, RendererChoice, Settings, ViewIntegrator};
 use crate::present::{read_texture, Display, DisplayTexture};
 use crate::projection::ProjectRenderer;
 use crate::tf_editor::TfEditor;
+use tetray_mesh::value_range;
 
 /// Histogram bins under the opacity curve.
 const HISTOGRAM_BINS: usize = 128;

@@ -54,7 +54,7 @@ fn starts_on_the_default_dataset_and_matches_the_snapshot() {
     let dataset = support::blunt_fin();
     let field = &dataset.field_names()[0];
     let scene = dataset.scene(field).expect("scene");
-    let (lo, hi) = tetray_viewer::dataset::value_range(&scene.scalar);
+    let (lo, hi) = tetray_mesh::value_range(&scene.scalar);
     let tf = TransferFunction::default_for_range(lo, hi);
     let integrator = ScalarIntegrator::new(
         Method::Ppi,

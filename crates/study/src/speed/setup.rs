@@ -9,7 +9,7 @@ use std::time::Instant;
 use glam::Vec3;
 use tetray_boundary_bvh::BuildPreset;
 use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunction};
-use tetray_mesh::{LoadOptions, LoadedMesh, ScalarField, TetMesh, Topology};
+use tetray_mesh::{mean_tet_chord, LoadOptions, ScalarField, TetMesh, Topology};
 use tetray_raycast::scenes::{box_grid, CellSplit};
 use tetray_raycast::{Camera, Scene};
 
@@ -74,7 +74,7 @@ pub fn load_dataset(
     let start = Instant::now();
     let loaded = tetray_mesh::load(&path, &LoadOptions::default())?;
     let load_s = start.elapsed().as_secs_f64();
-    let unit_distance = paraview_unit_distance(&loaded);
+    let unit_distance = loaded.paraview_unit_distance();
     prepare(
         dataset.name.to_string(),
         loaded.mesh,
@@ -160,47 +160,4 @@ fn prepare(
         load_s,
         scene_s,
     })
-}
-
-/// ParaView's default opacity unit distance, as the CLI takes it: the
-/// bounds diagonal over the cube root of the cells as read (hexahedra of a
-/// PLOT3D grid).
-fn paraview_unit_distance(loaded: &LoadedMesh) -> f32 {
-    let (lo, hi) = loaded.mesh.bounds();
-    let report = &loaded.report;
-    let cells = loaded.mesh.tets.len() - report.tets_from_split + report.cells_split;
-    let u = (hi - lo).as_dvec3().length() / (cells.max(1) as f64).cbrt();
-    if u > 0.0 && u.is_finite() {
-        u as f32
-    } else {
-        1.0
-    }
-}
-
-/// Mean chord of the tetrahedra, 4 V / S (Cauchy): the typical segment,
-/// as the CLI uses for the Riemann step and the pre-integration length.
-fn mean_tet_chord(mesh: &TetMesh) -> f32 {
-    let sum: f64 = mesh
-        .tets
-        .iter()
-        .map(|tet| {
-            let [a, b, c, d] = tet.map(|v| mesh.points[v as usize].as_dvec3());
-            let volume = (b - a).dot((c - a).cross(d - a)).abs() / 6.0;
-            let area = |p: glam::DVec3, q: glam::DVec3, r: glam::DVec3| {
-                (q - p).cross(r - p).length() / 2.0
-            };
-            let surface = area(a, b, c) + area(a, b, d) + area(a, c, d) + area(b, c, d);
-            if surface > 0.0 {
-                4.0 * volume / surface
-            } else {
-                0.0
-            }
-        })
-        .sum();
-    let chord = (sum / mesh.tets.len().max(1) as f64) as f32;
-    if chord > 0.0 && chord.is_finite() {
-        chord
-    } else {
-        1.0
-    }
 }

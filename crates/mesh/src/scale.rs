@@ -1,0 +1,92 @@
+//! Length scales and ranges that the renderers derive from a mesh by
+//! default: ParaView's opacity unit distance and the mean tetrahedron
+//! chord (the pre-integration table's length, the Riemann step).
+
+use crate::{LoadedMesh, TetMesh};
+
+impl LoadedMesh {
+    /// Cells of the dataset as read, before non-tetrahedral cells were
+    /// split: what ParaView counts (hexahedra for a PLOT3D grid).
+    pub fn input_cells(&self) -> usize {
+        let report = &self.report;
+        self.mesh.tets.len() - report.tets_from_split + report.cells_split
+    }
+
+    /// ParaView's default ScalarOpacityUnitDistance (vtkSMBoundsDomain,
+    /// mode APPROXIMATE_CELL_LENGTH): the bounds diagonal divided by the
+    /// cube root of the dataset's cell count, the diagonal itself for no
+    /// cells; 1 (VTK's default) for a mesh without a length scale.
+    pub fn paraview_unit_distance(&self) -> f32 {
+        let (lo, hi) = self.mesh.bounds();
+        let diagonal = (hi - lo).as_dvec3().length();
+        let cells = self.input_cells() as f64;
+        let u = if cells > 0.0 {
+            diagonal / cells.cbrt()
+        } else {
+            diagonal
+        };
+        if u > 0.0 && u.is_finite() {
+            u as f32
+        } else {
+            1.0
+        }
+    }
+}
+
+/// Mean chord length of the tetrahedra: for random lines through a convex
+/// body it is 4 V / S (Cauchy), the typical length of a ray segment; 1 for
+/// a degenerate mesh.
+pub fn mean_tet_chord(mesh: &TetMesh) -> f32 {
+    let mut sum = 0.0f64;
+    for tet in &mesh.tets {
+        let [a, b, c, d] = tet.map(|v| mesh.points[v as usize].as_dvec3());
+        let volume = (b - a).dot((c - a).cross(d - a)).abs() / 6.0;
+        let area =
+            |p: glam::DVec3, q: glam::DVec3, r: glam::DVec3| (q - p).cross(r - p).length() / 2.0;
+        let surface = area(a, b, c) + area(a, b, d) + area(a, c, d) + area(b, c, d);
+        if surface > 0.0 {
+            sum += 4.0 * volume / surface;
+        }
+    }
+    let chord = (sum / mesh.tets.len().max(1) as f64) as f32;
+    if chord > 0.0 && chord.is_finite() {
+        chord
+    } else {
+        1.0
+    }
+}
+
+/// Smallest and largest value (finite values: validated on load).
+pub fn value_range(values: &[f32]) -> (f32, f32) {
+    values
+        .iter()
+        .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &v| {
+            (lo.min(v), hi.max(v))
+        })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+
+    #[test]
+    fn chord_of_a_regular_tetrahedron_and_ranges() {
+        // Regular tetrahedron of edge 1: V = 1/(6 sqrt 2), S = sqrt 3,
+        // chord 4 V / S = sqrt(2/3) / 3.
+        let h = (2.0f32 / 3.0).sqrt();
+        let mesh = TetMesh {
+            points: vec![
+                Vec3::new(0.0, 0.0, 0.0),
+                Vec3::new(1.0, 0.0, 0.0),
+                Vec3::new(0.5, 3f32.sqrt() / 2.0, 0.0),
+                Vec3::new(0.5, 3f32.sqrt() / 6.0, h),
+            ],
+            tets: vec![[0, 1, 2, 3]],
+            ..TetMesh::default()
+        };
+        let expected = (2.0f32 / 3.0).sqrt() / 3.0;
+        assert!((mean_tet_chord(&mesh) - expected).abs() < 1e-6);
+        assert_eq!(value_range(&[2.0, -1.0, 5.0]), (-1.0, 5.0));
+    }
+}
