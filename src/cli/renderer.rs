@@ -63,28 +63,21 @@ impl Engine {
     /// outruns), saying so.
     pub fn new(choice: RendererArg, setup: &Setup, log: &dyn Fn(String)) -> anyhow::Result<Engine> {
         let gpu_method = tetray_gpu::layout::method_code(setup.method).is_some();
+        // The adapter for a renderer asked for by name, which must be able
+        // to run the method.
+        let gpu_context = |flag: &str| -> anyhow::Result<GpuContext> {
+            if !gpu_method {
+                bail!(
+                    "--integrator {}: the f64 reference has no GPU kernel; use --renderer cpu",
+                    setup.method
+                );
+            }
+            GpuContext::new().with_context(|| format!("--renderer {flag}"))
+        };
         match choice {
             RendererArg::Cpu => Ok(Engine::Cpu),
-            RendererArg::Gpu => {
-                if !gpu_method {
-                    bail!(
-                        "--integrator {}: the f64 reference has no GPU kernel; use --renderer cpu",
-                        setup.method
-                    );
-                }
-                let ctx = GpuContext::new().context("--renderer gpu")?;
-                Engine::gpu(ctx, setup, log)
-            }
-            RendererArg::Project => {
-                if !gpu_method {
-                    bail!(
-                        "--integrator {}: the f64 reference has no GPU kernel; use --renderer cpu",
-                        setup.method
-                    );
-                }
-                let ctx = GpuContext::new().context("--renderer project")?;
-                Engine::project(ctx, setup, log)
-            }
+            RendererArg::Gpu => Engine::gpu(gpu_context("gpu")?, setup, log),
+            RendererArg::Project => Engine::project(gpu_context("project")?, setup, log),
             RendererArg::Auto => {
                 if !gpu_method {
                     log(format!(
