@@ -55,6 +55,16 @@ fn main() -> anyhow::Result<()> {
     let startup = start.elapsed();
     let first = harness.state().frame_report();
 
+    // Idle display frames: the UI and the display pass with no ray casting
+    // (what a display frame costs whatever the renderer does).
+    let idle: Vec<Duration> = (0..10)
+        .map(|_| {
+            let t = Instant::now();
+            harness.step();
+            t.elapsed()
+        })
+        .collect();
+
     // Orbit: press in the image, move 8 points per display frame.
     let centre = Pos2::new(800.0, 400.0);
     harness.event(Event::PointerMoved(centre));
@@ -88,6 +98,7 @@ fn main() -> anyhow::Result<()> {
     let (orbit_median, orbit_max) = summary(&orbit);
     let (refine_median, refine_max) = summary(&refine);
     let (startup_median, _) = summary(&startup_frames);
+    let (idle_median, _) = summary(&idle);
     let frame = report.or(first);
     println!("{{");
     println!("  \"adapter\": {:?},", harness.state().adapter_name());
@@ -109,6 +120,7 @@ fn main() -> anyhow::Result<()> {
     println!("  \"startup_s\": {:.2},", startup.as_secs_f64());
     println!("  \"startup_display_frames\": {},", startup_frames.len());
     println!("  \"startup_median_ms_per_display_frame\": {startup_median:.1},");
+    println!("  \"idle_median_ms_per_display_frame\": {idle_median:.1},");
     println!("  \"orbit_median_ms_per_display_frame\": {orbit_median:.1},");
     println!("  \"orbit_max_ms_per_display_frame\": {orbit_max:.1},");
     println!("  \"refine_display_frames\": {},", refine.len());
