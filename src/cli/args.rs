@@ -231,7 +231,7 @@ pub fn parse_sort(text: &str) -> Result<SortKind, String> {
         .map_err(|e: tetray_project::sort::UnknownSort| e.to_string())
 }
 
-fn parse_bvh_preset(text: &str) -> Result<BuildPreset, String> {
+pub fn parse_bvh_preset(text: &str) -> Result<BuildPreset, String> {
     text.parse()
         .map_err(|e: tetray_boundary_bvh::BvhError| e.to_string())
 }

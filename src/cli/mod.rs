@@ -2,6 +2,7 @@
 
 mod args;
 mod bench;
+mod compare;
 mod generate;
 mod info;
 mod psi;
@@ -44,6 +45,9 @@ pub enum Command {
     /// Run a study of the methods (dissertation chapters 5-6): SVG plots,
     /// CSV and JSON in a folder.
     Study(Box<study::StudyArgs>),
+    /// Render one view with several renderers, integrators and sorts and
+    /// measure each against the f64 CPU reference: sheet, error maps, table.
+    Compare(Box<compare::CompareArgs>),
     /// Write a large test mesh (a refined PLOT3D dataset or a procedural
     /// nonconvex solid) at a requested tetrahedron count; print JSON.
     Generate(generate::GenerateArgs),
@@ -60,6 +64,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Some(Command::Bench(args)) => bench::run(&args),
         Some(Command::View(args)) => view::run(&args),
         Some(Command::Study(args)) => study::run(&args),
+        Some(Command::Compare(args)) => compare::run(&args),
         Some(Command::Generate(args)) => generate::run(&args),
     }
 }

@@ -102,10 +102,26 @@ pub struct Setup {
     pub camera: Camera,
     pub integrator: ScalarIntegrator,
     pub method: Method,
+    /// What the integrator was made from, to make another method's.
+    pub tf: TransferFunction,
+    pub integrator_options: IntegratorOptions,
     pub unit_distance: f32,
     pub load_time: Duration,
     pub scene_time: Duration,
     pub integrator_time: Duration,
+}
+
+impl Setup {
+    /// Switches to `method` with the same transfer function and options.
+    pub fn use_method(&mut self, method: Method) -> anyhow::Result<()> {
+        if method != self.method {
+            self.integrator = ScalarIntegrator::new(method, &self.tf, &self.integrator_options)
+                .with_context(|| format!("setting up the {method} integrator"))?;
+            self.integrator_time = self.integrator.setup_time();
+            self.method = method;
+        }
+        Ok(())
+    }
 }
 
 /// What [`prepare`] makes a frame of.
@@ -168,6 +184,15 @@ pub fn prepare(frame: FrameArgs<'_>, log: &dyn Fn(String)) -> anyhow::Result<Set
     warn_if_inside(&camera, scene.bounds());
 
     let (lo, hi) = value_range(&scene.scalar);
+    if lo == hi && args.tf.is_none() {
+        // The Oxygen Post's density is 1 everywhere: an empty image with
+        // no hint why is what a user would otherwise get.
+        eprintln!(
+            "warning: field {field:?} is constant ({lo}): the default transfer function gives it \
+             no opacity and the image will be empty; pick another field with --scalar \
+             (`tetray info` lists them)"
+        );
+    }
     let tf = match (&args.tf, &tf_text) {
         (Some(path), Some(text)) => {
             let rescale = (!args.no_rescale).then_some((lo, hi));
@@ -213,6 +238,8 @@ pub fn prepare(frame: FrameArgs<'_>, log: &dyn Fn(String)) -> anyhow::Result<Set
         camera,
         integrator,
         method,
+        tf,
+        integrator_options: options,
         unit_distance,
         load_time,
         scene_time,

@@ -1,0 +1,43 @@
+//! Comparing renderers' images against a reference: per-pixel absolute
+//! error and its summary ([`metrics`]), a FLIP-like perceptual error
+//! ([`flip`]), heat maps with colour bars ([`heatmap`]), a labelled
+//! side-by-side sheet ([`sheet`]) and the table of errors and speeds
+//! ([`report`]), written as PNG, JSON and Markdown.
+
+pub mod flip;
+pub mod font;
+pub mod heatmap;
+pub mod metrics;
+pub mod report;
+pub mod sheet;
+
+use std::path::PathBuf;
+
+pub use metrics::{abs_error, ErrorStats, ONE_LEVEL};
+pub use report::{compare, Method, Report, Row, Speed};
+
+/// What can go wrong comparing images or writing the results.
+#[derive(Debug, thiserror::Error)]
+pub enum CompareError {
+    #[error("image sizes differ: {test:?} against the reference's {reference:?}")]
+    SizeMismatch {
+        test: (u32, u32),
+        reference: (u32, u32),
+    },
+    #[error("nothing to compare: no method besides the reference")]
+    NoMethods,
+    #[error("writing {path}: {source}")]
+    Image {
+        path: PathBuf,
+        #[source]
+        source: image::ImageError,
+    },
+    #[error("writing {path}: {source}")]
+    Io {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error("serializing the table: {0}")]
+    Json(#[from] serde_json::Error),
+}
