@@ -38,6 +38,13 @@ struct Fragment {
     @location(2) @interpolate(linear) plane_b: vec4<f32>,
     @location(3) @interpolate(linear) opposite: vec4<f32>,
     @location(4) @interpolate(flat) clip_code: u32,
+    // The cell's depth range and scalar range, (z_min, z_max, s_min,
+    // s_max): the segment lies in the cell, so within both. A pixel centre
+    // the rasterizer puts just outside the cell's exact projection, or a
+    // plane nearly parallel to the rays (saturated at BIG, then
+    // interpolated), can put the exit plane far behind the cell; the clamp
+    // bounds such a segment by the cell's own thickness.
+    @location(5) @interpolate(flat) bounds: vec4<f32>,
 }
 
 // num / den, saturated at +-BIG where den is (nearly) zero.
@@ -119,6 +126,19 @@ fn vs_main(@builtin(vertex_index) corner: u32, @location(0) draw: vec2<u32>) -> 
     out.plane_b = select(vec4<f32>(own.y), vec4<f32>(far.y), is_far);
     out.opposite = select(vec4<f32>(0.0), vec4<f32>(1.0), is_far);
     out.clip_code = draw.y;
+    let depths = vec4<f32>(
+        dot(q0.xyz - params.position, params.direction),
+        dot(q1.xyz - params.position, params.direction),
+        dot(q2.xyz - params.position, params.direction),
+        dot(q3.xyz - params.position, params.direction),
+    );
+    let scalars = vec4<f32>(q0.w, q1.w, q2.w, q3.w);
+    out.bounds = vec4<f32>(
+        min(min(depths.x, depths.y), min(depths.z, depths.w)),
+        max(max(depths.x, depths.y), max(depths.z, depths.w)),
+        min(min(scalars.x, scalars.y), min(scalars.z, scalars.w)),
+        max(max(scalars.x, scalars.y), max(scalars.z, scalars.w)),
+    );
     return out;
 }
 
@@ -170,6 +190,10 @@ fn fs_main(f: Fragment) -> @location(0) vec4<f32> {
         let y = (params.half_height - f.clip.y) * params.pixel;
         scale = length(params.direction + params.right * x + params.up * y);
     }
+    z_in = max(z_in, f.bounds.x);
+    z_out = min(z_out, f.bounds.y);
+    s_in = clamp(s_in, f.bounds.z, f.bounds.w);
+    s_out = clamp(s_out, f.bounds.z, f.bounds.w);
     let length = (z_out - z_in) * scale;
     if (!(length > 0.0)) {
         discard;

@@ -30,7 +30,10 @@ fn f(value: &Value) -> f64 {
 /// f64 reference (measured 2e-6 to 1.2e-5 over five views: f32 plane
 /// crossings and Psi lookups) with no pixel a PNG shows as different; each
 /// projection sort shows errors a PNG shows (measured 0.6% to 1.7% of the
-/// pixels over 1/255) and a mean error at least 10x the ray caster's.
+/// pixels over 1/255) and a mean error at least 10x the ray caster's. No
+/// projected segment runs past its cell: the worst pixel stays under 0.3
+/// (0.11 measured; 0.71 before segments were clamped to their cell's depth
+/// range, from exit planes nearly parallel to the rays).
 #[test]
 fn the_ray_caster_matches_the_reference_where_the_projection_does_not() {
     if !have_gpu() {
@@ -39,7 +42,17 @@ fn the_ray_caster_matches_the_reference_where_the_projection_does_not() {
     let dir = scratch("blunt-fin");
     let out = run(
         &dir,
-        &["compare", "--size", "64x48", "--azimuth", "180", "--elevation", "30", "-o", "out"],
+        &[
+            "compare",
+            "--size",
+            "64x48",
+            "--azimuth",
+            "180",
+            "--elevation",
+            "30",
+            "-o",
+            "out",
+        ],
     );
     assert!(out.status.success(), "{}", text(&out.stderr));
     let out_dir = dir.join("out");
@@ -50,7 +63,12 @@ fn the_ray_caster_matches_the_reference_where_the_projection_does_not() {
     let labels: Vec<&str> = rows.iter().filter_map(|r| r["label"].as_str()).collect();
     assert_eq!(
         labels,
-        ["gpu ppi", "project ppi centroid", "project ppi mpvo", "project ppi mpvonc"]
+        [
+            "gpu ppi",
+            "project ppi centroid",
+            "project ppi mpvo",
+            "project ppi mpvonc"
+        ]
     );
     let gpu = &rows[0]["abs_error"];
     assert!(f(&gpu["max"]) < 1e-4, "{gpu}");
@@ -58,7 +76,12 @@ fn the_ray_caster_matches_the_reference_where_the_projection_does_not() {
     for row in &rows[1..] {
         let e = &row["abs_error"];
         assert!(f(&e["over_one_level"]) > 0.0, "{}: {e}", row["label"]);
-        assert!(f(&e["mean"]) > 10.0 * f(&gpu["mean"]), "{}: {e}", row["label"]);
+        assert!(f(&e["max"]) < 0.3, "{}: {e}", row["label"]);
+        assert!(
+            f(&e["mean"]) > 10.0 * f(&gpu["mean"]),
+            "{}: {e}",
+            row["label"]
+        );
         assert!(f(&row["speed"]["ms_per_frame"]) > 0.0);
         assert!(f(&row["speed"]["segments_per_s"]) > 0.0);
     }
@@ -107,7 +130,11 @@ fn on_a_convex_mesh_mpvo_meets_the_reference() {
     );
     assert!(out.status.success(), "{}", text(&out.stderr));
     let said = format!("{}{}", text(&out.stdout), text(&out.stderr));
-    let budget = if said.contains("Rgba16Float") { 4e-3 } else { 1e-4 };
+    let budget = if said.contains("Rgba16Float") {
+        4e-3
+    } else {
+        1e-4
+    };
     let json = table(&dir.join("out"));
     let rows = json["methods"].as_array().expect("methods");
     assert_eq!(rows[1]["label"], "project exact mpvo");
@@ -127,7 +154,15 @@ fn bad_method_lists_are_refused_with_one_line() {
     ] {
         let out = run(
             Path::new("."),
-            &["compare", "--methods", list, "--size", "8x8", "-o", "unused"],
+            &[
+                "compare",
+                "--methods",
+                list,
+                "--size",
+                "8x8",
+                "-o",
+                "unused",
+            ],
         );
         assert_eq!(out.status.code(), Some(1), "{list}");
         let err = text(&out.stderr);

@@ -82,7 +82,11 @@ pub fn parse_spec(text: &str) -> Result<MethodSpec, String> {
         Some("cpu") => RendererArg::Cpu,
         Some("gpu") => RendererArg::Gpu,
         Some("project") => RendererArg::Project,
-        _ => return Err(format!("{text:?}: the renderer must be cpu, gpu or project")),
+        _ => {
+            return Err(format!(
+                "{text:?}: the renderer must be cpu, gpu or project"
+            ))
+        }
     };
     let mut spec = MethodSpec {
         renderer,

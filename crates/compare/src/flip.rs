@@ -29,7 +29,11 @@ pub const PIXELS_PER_DEGREE: f32 = 67.0;
 const WHITE: [f32; 3] = [0.950_456, 1.0, 1.088_754];
 
 /// The per-pixel FLIP-like error of `test` against `reference`.
-pub fn flip(test: &Image, reference: &Image, pixels_per_degree: f32) -> Result<Vec<f32>, CompareError> {
+pub fn flip(
+    test: &Image,
+    reference: &Image,
+    pixels_per_degree: f32,
+) -> Result<Vec<f32>, CompareError> {
     if (test.width, test.height) != (reference.width, reference.height) {
         return Err(CompareError::SizeMismatch {
             test: (test.width, test.height),
@@ -38,7 +42,11 @@ pub fn flip(test: &Image, reference: &Image, pixels_per_degree: f32) -> Result<V
     }
     let (w, h) = (test.width as usize, test.height as usize);
     let ycxcz = |image: &Image| -> [Vec<f32>; 3] {
-        let pixels: Vec<[f32; 3]> = image.rgba.par_iter().map(|p| to_ycxcz(displayed(p))).collect();
+        let pixels: Vec<[f32; 3]> = image
+            .rgba
+            .par_iter()
+            .map(|p| to_ycxcz(displayed(p)))
+            .collect();
         std::array::from_fn(|c| pixels.iter().map(|p| p[c]).collect())
     };
     let (t, r) = (ycxcz(test), ycxcz(reference));
@@ -47,12 +55,17 @@ pub fn flip(test: &Image, reference: &Image, pixels_per_degree: f32) -> Result<V
         std::array::from_fn(|c| convolve(&channels[c], w, h, &kernels[c], &kernels[c]))
     };
     let (tb, rb) = (blur(&t), blur(&r));
-    let max_distance = hyab(hunt(lab(linear_to_xyz([0.0, 1.0, 0.0]))), hunt(lab(linear_to_xyz([0.0, 0.0, 1.0])))).powf(0.7);
+    let max_distance = hyab(
+        hunt(lab(linear_to_xyz([0.0, 1.0, 0.0]))),
+        hunt(lab(linear_to_xyz([0.0, 0.0, 1.0]))),
+    )
+    .powf(0.7);
     let colour: Vec<f32> = (0..w * h)
         .into_par_iter()
         .map(|i| {
             let lab_of = |b: &[Vec<f32>; 3]| {
-                let rgb = xyz_to_linear(from_ycxcz([b[0][i], b[1][i], b[2][i]])).map(|v| v.clamp(0.0, 1.0));
+                let rgb = xyz_to_linear(from_ycxcz([b[0][i], b[1][i], b[2][i]]))
+                    .map(|v| v.clamp(0.0, 1.0));
                 hunt(lab(linear_to_xyz(rgb)))
             };
             compress(hyab(lab_of(&tb), lab_of(&rb)).powf(0.7), max_distance)
@@ -76,7 +89,9 @@ pub fn flip(test: &Image, reference: &Image, pixels_per_degree: f32) -> Result<V
     Ok((0..w * h)
         .map(|i| {
             let difference = (te[i] - re[i]).abs().max((tp[i] - rp[i]).abs());
-            let feature = (difference / std::f32::consts::SQRT_2).clamp(0.0, 1.0).sqrt();
+            let feature = (difference / std::f32::consts::SQRT_2)
+                .clamp(0.0, 1.0)
+                .sqrt();
             colour[i].powf(1.0 - feature)
         })
         .collect())
@@ -132,7 +147,11 @@ fn lab(xyz: [f32; 3]) -> [f32; 3] {
             t / (3.0 * delta * delta) + 4.0 / 29.0
         }
     };
-    let [fx, fy, fz] = [f(xyz[0] / WHITE[0]), f(xyz[1] / WHITE[1]), f(xyz[2] / WHITE[2])];
+    let [fx, fy, fz] = [
+        f(xyz[0] / WHITE[0]),
+        f(xyz[1] / WHITE[1]),
+        f(xyz[2] / WHITE[2]),
+    ];
     [116.0 * fy - 16.0, 500.0 * (fx - fy), 200.0 * (fy - fz)]
 }
 
@@ -164,7 +183,8 @@ fn csf_kernels(ppd: f32) -> [Vec<f32>; 3] {
     ];
     params.map(|[a1, b1, a2, b2]| {
         let widest = b1.max(b2);
-        let radius = (3.0 * (widest / (2.0 * std::f32::consts::PI.powi(2))).sqrt() * ppd).ceil() as i32;
+        let radius =
+            (3.0 * (widest / (2.0 * std::f32::consts::PI.powi(2))).sqrt() * ppd).ceil() as i32;
         let pi = std::f32::consts::PI;
         let g = |x: f32, a: f32, b: f32| a * (pi / b).sqrt() * (-pi * pi * x * x / b).exp();
         normalized((-radius..=radius).map(|i| {
@@ -179,14 +199,25 @@ fn csf_kernels(ppd: f32) -> [Vec<f32>; 3] {
 fn feature_kernels(sigma: f32) -> (Vec<f32>, Vec<f32>, Vec<f32>) {
     let radius = (3.0 * sigma).ceil() as i32;
     let xs: Vec<f32> = (-radius..=radius).map(|i| i as f32).collect();
-    let g: Vec<f32> = xs.iter().map(|x| (-x * x / (2.0 * sigma * sigma)).exp()).collect();
+    let g: Vec<f32> = xs
+        .iter()
+        .map(|x| (-x * x / (2.0 * sigma * sigma)).exp())
+        .collect();
     let first: Vec<f32> = xs.iter().zip(&g).map(|(x, g)| -x * g).collect();
-    let second: Vec<f32> = xs.iter().zip(&g).map(|(x, g)| (x * x / (sigma * sigma) - 1.0) * g).collect();
+    let second: Vec<f32> = xs
+        .iter()
+        .zip(&g)
+        .map(|(x, g)| (x * x / (sigma * sigma) - 1.0) * g)
+        .collect();
     let positive = |k: &[f32]| k.iter().filter(|&&v| v > 0.0).sum::<f32>();
     let (p1, p2) = (positive(&first), positive(&second));
     let mean2 = second.iter().sum::<f32>() / second.len() as f32;
     let second: Vec<f32> = second.iter().map(|v| (v - mean2) / p2).collect();
-    (normalized(g.into_iter()), first.iter().map(|v| v / p1).collect(), second)
+    (
+        normalized(g.into_iter()),
+        first.iter().map(|v| v / p1).collect(),
+        second,
+    )
 }
 
 fn normalized(values: impl Iterator<Item = f32>) -> Vec<f32> {
@@ -227,7 +258,11 @@ mod tests {
         let pixels = (0..32 * 32)
             .map(|i| {
                 let (x, y) = (i % 32, i / 32);
-                let v = if (8..24).contains(&x) && (8..24).contains(&y) { level } else { 0.1 };
+                let v = if (8..24).contains(&x) && (8..24).contains(&y) {
+                    level
+                } else {
+                    0.1
+                };
                 [v, v * 0.5, v * 0.25, 1.0]
             })
             .collect();
@@ -238,11 +273,18 @@ mod tests {
     fn identical_images_have_no_error_and_larger_differences_more() {
         let reference = square(0.8);
         let same = flip(&reference, &reference, PIXELS_PER_DEGREE).unwrap();
-        assert!(same.iter().all(|&e| e.abs() < 1e-5), "{:?}", same.iter().cloned().fold(0.0, f32::max));
+        assert!(
+            same.iter().all(|&e| e.abs() < 1e-5),
+            "{:?}",
+            same.iter().cloned().fold(0.0, f32::max)
+        );
         let mean = |e: Vec<f32>| e.iter().sum::<f32>() / e.len() as f32;
         let small = mean(flip(&square(0.75), &reference, PIXELS_PER_DEGREE).unwrap());
         let large = mean(flip(&square(0.3), &reference, PIXELS_PER_DEGREE).unwrap());
-        assert!(0.0 < small && small < large && large <= 1.0, "{small} {large}");
+        assert!(
+            0.0 < small && small < large && large <= 1.0,
+            "{small} {large}"
+        );
         // Black against white is (nearly) the largest error there is.
         let white = Image::from_pixels(8, 8, vec![[1.0; 4]; 64]).unwrap();
         let black = Image::from_pixels(8, 8, vec![[0.0, 0.0, 0.0, 1.0]; 64]).unwrap();

@@ -74,7 +74,14 @@ pub fn text_width(text: &str, scale: u32) -> u32 {
 
 /// Draws `text` with its top-left corner at (x, y), `scale` pixels per font
 /// pixel, clipped to the image.
-pub fn draw_text(image: &mut image::RgbImage, x: u32, y: u32, text: &str, scale: u32, rgb: [u8; 3]) {
+pub fn draw_text(
+    image: &mut image::RgbImage,
+    x: u32,
+    y: u32,
+    text: &str,
+    scale: u32,
+    rgb: [u8; 3],
+) {
     for (i, c) in text.chars().enumerate() {
         let rows = glyph(c);
         let x0 = x + i as u32 * ADVANCE * scale;
@@ -102,7 +109,9 @@ mod tests {
 
     #[test]
     fn glyphs_are_five_columns_and_distinct() {
-        let chars: Vec<char> = "0123456789ABCDEFGHIJKLMNOPQRSTUVWXYZ.,:-+=/()[]%_<>'#".chars().collect();
+        let chars: Vec<char> = "0123456789ABCDEFGHIJKLMNOPQRSTUVWXYZ.,:-+=/()[]%_<>'#"
+            .chars()
+            .collect();
         for &c in &chars {
             assert!(glyph(c).iter().all(|&r| r < 32), "{c}");
         }

@@ -38,7 +38,9 @@ pub fn heat_map(values: &[f32], width: u32, height: u32, max: f32) -> RgbImage {
 /// A vertical colour bar `height` pixels tall for values 0..`max`, ticks
 /// labelled, `title` on top.
 pub fn colour_bar(height: u32, max: f32, title: &str) -> RgbImage {
-    let labels: Vec<String> = (0..=4).map(|i| format_value(max * (4 - i) as f32 / 4.0)).collect();
+    let labels: Vec<String> = (0..=4)
+        .map(|i| format_value(max * (4 - i) as f32 / 4.0))
+        .collect();
     let label_width = labels.iter().map(|l| text_width(l, 1)).max().unwrap_or(0);
     let bar = 14;
     let width = (bar + 6 + label_width).max(text_width(title, 1)) + 4;
@@ -79,8 +81,11 @@ mod tests {
 
     #[test]
     fn the_map_runs_dark_to_bright() {
-        let luminance = |c: [u8; 3]| 0.3 * f32::from(c[0]) + 0.59 * f32::from(c[1]) + 0.11 * f32::from(c[2]);
-        let steps: Vec<f32> = (0..=20).map(|i| luminance(colour(i as f32 / 20.0))).collect();
+        let luminance =
+            |c: [u8; 3]| 0.3 * f32::from(c[0]) + 0.59 * f32::from(c[1]) + 0.11 * f32::from(c[2]);
+        let steps: Vec<f32> = (0..=20)
+            .map(|i| luminance(colour(i as f32 / 20.0)))
+            .collect();
         assert!(steps.windows(2).all(|w| w[1] > w[0]), "{steps:?}");
         assert_eq!(colour(-1.0), colour(0.0));
         assert_eq!(colour(f32::NAN), colour(0.0));

@@ -75,7 +75,8 @@ mod tests {
     #[test]
     fn channels_and_sizes() {
         let a = Image::from_pixels(2, 1, vec![[0.1, 0.2, 0.3, 0.4], [0.0; 4]]).unwrap();
-        let b = Image::from_pixels(2, 1, vec![[0.1, 0.5, 0.3, 0.4], [0.0, 0.0, 0.0, 0.25]]).unwrap();
+        let b =
+            Image::from_pixels(2, 1, vec![[0.1, 0.5, 0.3, 0.4], [0.0, 0.0, 0.0, 0.25]]).unwrap();
         let e = abs_error(&a, &b).unwrap();
         assert!((e[0] - 0.3).abs() < 1e-6 && e[1] == 0.25);
         let c = Image::new(1, 1).unwrap();

@@ -288,7 +288,13 @@ mod tests {
 
     fn method(label: &str, level: f32) -> Method {
         let pixels = (0..16 * 16)
-            .map(|i| if i % 16 < 8 { [level, 0.0, 0.0, level] } else { [0.0; 4] })
+            .map(|i| {
+                if i % 16 < 8 {
+                    [level, 0.0, 0.0, level]
+                } else {
+                    [0.0; 4]
+                }
+            })
             .collect();
         Method {
             label: label.to_string(),
@@ -338,10 +344,18 @@ mod tests {
             .iter()
             .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
             .collect();
-        for name in ["abs_1_a.png", "flip_1_a.png", "sheet.png", "table.json", "table.md"] {
+        for name in [
+            "abs_1_a.png",
+            "flip_1_a.png",
+            "sheet.png",
+            "table.json",
+            "table.md",
+        ] {
             assert!(names.iter().any(|n| n == name), "{name} in {names:?}");
         }
-        let sheet = image::open(dir.join("sheet.png")).expect("sheet").into_rgb8();
+        let sheet = image::open(dir.join("sheet.png"))
+            .expect("sheet")
+            .into_rgb8();
         assert!(sheet.width() > 2 * 16 && sheet.height() > 3 * 16);
         let _ = std::fs::remove_dir_all(&dir);
     }

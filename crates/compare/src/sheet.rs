@@ -58,7 +58,11 @@ pub fn sheet(columns: &[String], rows: &[SheetRow]) -> RgbImage {
         .max()
         .map_or(0, |w| w + GAP);
     let width = GAP + widths.iter().map(|w| w + GAP).sum::<u32>() + bars;
-    let title_width = rows.iter().map(|r| text_width(&r.title, 1)).max().unwrap_or(0);
+    let title_width = rows
+        .iter()
+        .map(|r| text_width(&r.title, 1))
+        .max()
+        .unwrap_or(0);
     let width = width.max(title_width + 2 * GAP);
     let height = GAP + LINE + rows.iter().map(|r| row_height(r) + GAP).sum::<u32>();
     let mut out = RgbImage::from_pixel(width, height, WHITE);

@@ -19,6 +19,8 @@ pub struct Corner {
     pub plane_b: Vec4,
     pub opposite: Vec4,
     pub clip_code: u32,
+    /// The cell's (z_min, z_max, s_min, s_max).
+    pub bounds: Vec4,
 }
 
 fn ratio(num: f32, den: f32) -> f32 {
@@ -79,6 +81,14 @@ pub fn vertex(params: &Params, q: &[Vec4; 4], corner: usize, clip_code: u32) -> 
             Vec2::new(ratio(nr, den), ratio(me.w * nr + sr, den)),
         )
     };
+    let depths = q.map(|v| (v.truncate() - v3(params.position)).dot(v3(params.direction)));
+    let scalars = q.map(|v| v.w);
+    let bounds = Vec4::new(
+        depths[0].min(depths[1]).min(depths[2].min(depths[3])),
+        depths[0].max(depths[1]).max(depths[2].max(depths[3])),
+        scalars[0].min(scalars[1]).min(scalars[2].min(scalars[3])),
+        scalars[0].max(scalars[1]).max(scalars[2].max(scalars[3])),
+    );
     let pick = |own: f32, far: f32| {
         Vec4::from_array(std::array::from_fn(|j| if j == corner { far } else { own }))
     };
@@ -89,6 +99,7 @@ pub fn vertex(params: &Params, q: &[Vec4; 4], corner: usize, clip_code: u32) -> 
         plane_b: pick(own.y, far.y),
         opposite: pick(0.0, 1.0),
         clip_code,
+        bounds,
     }
 }
 
@@ -101,6 +112,7 @@ pub struct Fragment {
     pub plane_b: Vec4,
     pub opposite: Vec4,
     pub clip_code: u32,
+    pub bounds: Vec4,
 }
 
 impl Fragment {
@@ -115,6 +127,7 @@ impl Fragment {
             opposite: tri[0].opposite * w[0] + tri[1].opposite * w[1] + tri[2].opposite * w[2],
             // Flat: the provoking (first) corner's.
             clip_code: tri[0].clip_code,
+            bounds: tri[0].bounds,
         }
     }
 }
@@ -122,7 +135,7 @@ impl Fragment {
 /// The fragment stage: the light of the pixel's segment through the piece,
 /// or `None` where the fragment is discarded.
 pub fn fragment(params: &Params, inputs: &Inputs, f: &Fragment) -> Option<Light> {
-    let (z_in, s_in, z_out, s_out, scale);
+    let (mut z_in, mut s_in, mut z_out, mut s_out, scale);
     if params.orthographic == 1 {
         let mut best = BIG;
         let mut best_s = 0.0;
@@ -162,6 +175,11 @@ pub fn fragment(params: &Params, inputs: &Inputs, f: &Fragment) -> Option<Light>
             ray.length(),
         );
     }
+    // The segment lies in the cell: within its depth and scalar ranges.
+    z_in = z_in.max(f.bounds.x);
+    z_out = z_out.min(f.bounds.y);
+    s_in = s_in.max(f.bounds.z).min(f.bounds.w);
+    s_out = s_out.max(f.bounds.z).min(f.bounds.w);
     let length = (z_out - z_in) * scale;
     if length.is_nan() || length <= 0.0 {
         return None;
