@@ -36,6 +36,8 @@ pub enum StudyError {
     Build(#[from] tetray_raycast::scenes::BuildError),
     #[error(transparent)]
     Gpu(#[from] tetray_gpu::GpuError),
+    #[error(transparent)]
+    Project(#[from] tetray_project::ProjectError),
     #[error("{what} on the GPU: {message}")]
     GpuKernel { what: &'static str, message: String },
 }

@@ -301,11 +301,21 @@ fn speed_study_small() {
         "{:?}",
         failed(&summary.checks)
     );
-    let renderers = if summary.gpu_adapter.is_some() { 2 } else { 1 };
+    // CPU ray caster, and with an adapter the GPU ray caster and the cell
+    // projection.
+    let renderers = if summary.gpu_adapter.is_some() { 3 } else { 1 };
     assert_eq!(summary.table.len(), 3 * 3 * renderers);
     assert_eq!(summary.resolution.len(), 2 * renderers);
     assert_eq!(summary.scaling.len(), 2 * renderers);
     assert!(summary.notes.iter().any(|n| n.contains("tetray-project")));
+    if summary.gpu_adapter.is_some() {
+        // The projection integrates segments of the same mesh.
+        assert!(summary
+            .table
+            .iter()
+            .filter(|r| r.renderer == "projection")
+            .all(|r| r.segments_per_frame > 0.0));
+    }
     // The datasets as the dissertation counts them (table 6.1, our split).
     let tets = |name: &str| summary.table.iter().find(|r| r.mesh == name).unwrap().tets;
     assert_eq!(tets("Blunt Fin"), 187_318);
