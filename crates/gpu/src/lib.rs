@@ -18,6 +18,7 @@
 mod context;
 mod error;
 pub mod layout;
+pub mod readback;
 mod render;
 pub mod shaders;
 mod shared;

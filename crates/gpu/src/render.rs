@@ -9,6 +9,7 @@ use tetray_raycast::{Camera, Image};
 use wgpu::util::DeviceExt;
 
 use crate::layout::{self, Params, Tile};
+use crate::readback::{read_buffer, readback_buffer, PassTimestamps};
 use crate::shaders::raycast_source;
 use crate::upload::{GpuIntegrator, GpuScene, IntegratorData};
 use crate::{GpuContext, GpuError, GpuTarget};
@@ -163,7 +164,9 @@ impl GpuRaycaster {
         let target = GpuTarget::new(ctx, width, height)?;
         let device = &ctx.device;
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let queries = ctx.timestamps.then(|| Timestamps::new(ctx));
+        let queries = ctx
+            .timestamps
+            .then(|| PassTimestamps::new(ctx, "raycast timestamps"));
         let mut encoder = device.create_command_encoder(&Default::default());
         let timestamp_writes = queries.as_ref().map(|q| wgpu::ComputePassTimestampWrites {
             query_set: &q.set,
@@ -431,82 +434,5 @@ fn buffer_entry(binding: u32, buffer: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_>
     wgpu::BindGroupEntry {
         binding,
         resource: buffer.as_entire_binding(),
-    }
-}
-
-pub(crate) fn readback_buffer(ctx: &GpuContext, label: &str, size: u64) -> wgpu::Buffer {
-    ctx.device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some(label),
-        size,
-        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    })
-}
-
-/// Maps a read-back buffer and copies it out.
-pub(crate) fn read_buffer<T: bytemuck::Pod>(
-    ctx: &GpuContext,
-    buffer: &wgpu::Buffer,
-) -> Result<Vec<T>, GpuError> {
-    let slice = buffer.slice(..);
-    let (sender, receiver) = std::sync::mpsc::channel();
-    slice.map_async(wgpu::MapMode::Read, move |result| {
-        let _ = sender.send(result);
-    });
-    ctx.device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .map_err(|e| GpuError::Readback(e.to_string()))?;
-    receiver
-        .recv()
-        .map_err(|e| GpuError::Readback(e.to_string()))?
-        .map_err(|e| GpuError::Readback(e.to_string()))?;
-    let data = {
-        let view = slice
-            .get_mapped_range()
-            .map_err(|e| GpuError::Readback(e.to_string()))?;
-        bytemuck::cast_slice(&view).to_vec()
-    };
-    buffer.unmap();
-    Ok(data)
-}
-
-/// Two timestamps around the pass.
-struct Timestamps {
-    set: wgpu::QuerySet,
-    resolve: wgpu::Buffer,
-    read: wgpu::Buffer,
-    period_ns: f32,
-}
-
-impl Timestamps {
-    fn new(ctx: &GpuContext) -> Timestamps {
-        let set = ctx.device.create_query_set(&wgpu::QuerySetDescriptor {
-            label: Some("raycast timestamps"),
-            ty: wgpu::QueryType::Timestamp,
-            count: 2,
-        });
-        let resolve = ctx.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("timestamps"),
-            size: 16,
-            usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
-        Timestamps {
-            set,
-            resolve,
-            read: readback_buffer(ctx, "timestamps readback", 16),
-            period_ns: ctx.queue.get_timestamp_period(),
-        }
-    }
-
-    fn resolve(&self, encoder: &mut wgpu::CommandEncoder) {
-        encoder.resolve_query_set(&self.set, 0..2, &self.resolve, 0);
-        encoder.copy_buffer_to_buffer(&self.resolve, 0, &self.read, 0, 16);
-    }
-
-    fn read(&self, ctx: &GpuContext) -> Result<Option<Duration>, GpuError> {
-        let ticks: Vec<u64> = read_buffer(ctx, &self.read)?;
-        let ns = ticks[1].saturating_sub(ticks[0]) as f64 * f64::from(self.period_ns);
-        Ok((ns > 0.0).then(|| Duration::from_secs_f64(ns * 1e-9)))
     }
 }

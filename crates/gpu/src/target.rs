@@ -5,7 +5,7 @@
 use tetray_raycast::CameraError;
 
 use crate::layout::STAT_COUNT;
-use crate::render::readback_buffer;
+use crate::readback::readback_buffer;
 use crate::{GpuContext, GpuError};
 
 /// The kernel's output for one `width x height` frame: premultiplied RGBA

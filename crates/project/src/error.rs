@@ -31,8 +31,6 @@ pub enum ProjectError {
     Image(#[from] ImageError),
     #[error("{0}")]
     Gpu(#[from] GpuError),
-    #[error("reading the frame back from the GPU failed: {0}")]
-    Readback(String),
     #[error("the GPU reported an error: {0}")]
     Driver(String),
 }

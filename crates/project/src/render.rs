@@ -5,6 +5,7 @@
 
 use std::time::{Duration, Instant};
 
+use tetray_gpu::readback::{read_buffer, readback_buffer, PassTimestamps};
 use tetray_gpu::{GpuContext, GpuIntegrator};
 use tetray_raycast::Image;
 use wgpu::util::DeviceExt;
@@ -293,7 +294,9 @@ impl GpuProjector {
             view_formats: &[],
         });
         let target_view = target.create_view(&Default::default());
-        let timestamps = ctx.timestamps.then(|| Timestamps::new(ctx));
+        let timestamps = ctx
+            .timestamps
+            .then(|| PassTimestamps::new(ctx, "project timestamps"));
         let mut encoder = device.create_command_encoder(&Default::default());
         {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
@@ -329,7 +332,8 @@ impl GpuProjector {
         }
         let texel = self.format.block_copy_size(None).unwrap_or(16);
         let row_bytes = (width * texel).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
-        let image_read = readback(ctx, "project image readback", u64::from(row_bytes * height));
+        let image_read =
+            readback_buffer(ctx, "project image readback", u64::from(row_bytes * height));
         encoder.copy_texture_to_buffer(
             target.as_image_copy(),
             wgpu::TexelCopyBufferInfo {
@@ -342,7 +346,7 @@ impl GpuProjector {
             },
             target.size(),
         );
-        let stats_read = readback(ctx, "project stats readback", (STAT_COUNT * 4) as u64);
+        let stats_read = readback_buffer(ctx, "project stats readback", (STAT_COUNT * 4) as u64);
         encoder.copy_buffer_to_buffer(&stats, 0, &stats_read, 0, (STAT_COUNT * 4) as u64);
         let start = Instant::now();
         let submission = ctx.queue.submit([encoder.finish()]);
@@ -356,9 +360,9 @@ impl GpuProjector {
         if let Some(error) = pollster::block_on(scope.pop()) {
             return Err(ProjectError::Driver(error.to_string()));
         }
-        let bytes: Vec<u8> = read(ctx, &image_read)?;
+        let bytes: Vec<u8> = read_buffer(ctx, &image_read)?;
         let rgba = unpack_rows(&bytes, width, height, row_bytes, self.format);
-        let counters: Vec<u32> = read(ctx, &stats_read)?;
+        let counters: Vec<u32> = read_buffer(ctx, &stats_read)?;
         let gpu_time = match &timestamps {
             Some(t) => t.read(ctx)?,
             None => None,
@@ -379,38 +383,6 @@ fn entry(binding: u32, buffer: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
         binding,
         resource: buffer.as_entire_binding(),
     }
-}
-
-fn readback(ctx: &GpuContext, label: &str, size: u64) -> wgpu::Buffer {
-    ctx.device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some(label),
-        size,
-        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    })
-}
-
-fn read<T: bytemuck::Pod>(ctx: &GpuContext, buffer: &wgpu::Buffer) -> Result<Vec<T>, ProjectError> {
-    let slice = buffer.slice(..);
-    let (sender, receiver) = std::sync::mpsc::channel();
-    slice.map_async(wgpu::MapMode::Read, move |result| {
-        let _ = sender.send(result);
-    });
-    ctx.device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .map_err(|e| ProjectError::Readback(e.to_string()))?;
-    receiver
-        .recv()
-        .map_err(|e| ProjectError::Readback(e.to_string()))?
-        .map_err(|e| ProjectError::Readback(e.to_string()))?;
-    let data = {
-        let view = slice
-            .get_mapped_range()
-            .map_err(|e| ProjectError::Readback(e.to_string()))?;
-        bytemuck::pod_collect_to_vec(&view)
-    };
-    buffer.unmap();
-    Ok(data)
 }
 
 /// Padded texture rows to RGBA f32 pixels.
@@ -451,45 +423,6 @@ fn f16_to_f32(bits: u16) -> f32 {
         31 if mantissa == 0.0 => f32::INFINITY,
         31 => f32::NAN,
         e => (1.0 + mantissa / 1024.0) * 2f32.powi(e - 15),
-    }
-}
-
-/// Two timestamps around the render pass.
-struct Timestamps {
-    set: wgpu::QuerySet,
-    resolve: wgpu::Buffer,
-    read: wgpu::Buffer,
-    period_ns: f32,
-}
-
-impl Timestamps {
-    fn new(ctx: &GpuContext) -> Timestamps {
-        Timestamps {
-            set: ctx.device.create_query_set(&wgpu::QuerySetDescriptor {
-                label: Some("project timestamps"),
-                ty: wgpu::QueryType::Timestamp,
-                count: 2,
-            }),
-            resolve: ctx.device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("project timestamps"),
-                size: 16,
-                usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
-                mapped_at_creation: false,
-            }),
-            read: readback(ctx, "project timestamps readback", 16),
-            period_ns: ctx.queue.get_timestamp_period(),
-        }
-    }
-
-    fn resolve(&self, encoder: &mut wgpu::CommandEncoder) {
-        encoder.resolve_query_set(&self.set, 0..2, &self.resolve, 0);
-        encoder.copy_buffer_to_buffer(&self.resolve, 0, &self.read, 0, 16);
-    }
-
-    fn read(&self, ctx: &GpuContext) -> Result<Option<Duration>, ProjectError> {
-        let ticks: Vec<u64> = read(ctx, &self.read)?;
-        let ns = ticks[1].saturating_sub(ticks[0]) as f64 * f64::from(self.period_ns);
-        Ok((ns > 0.0).then(|| Duration::from_secs_f64(ns * 1e-9)))
     }
 }
 

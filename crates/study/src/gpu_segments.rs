@@ -6,6 +6,7 @@
 
 use bytemuck::{Pod, Zeroable};
 use tetray_gpu::layout::{method_code, Params};
+use tetray_gpu::readback::{read_buffer, readback_buffer};
 use tetray_gpu::shaders::{COMMON, INTEGRATE};
 use tetray_gpu::GpuContext;
 use tetray_integrate::{GammaSpacing, Method, PsiTable};
@@ -212,12 +213,7 @@ impl SegmentKernel {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
-        let readback = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("segment lights readback"),
-            size: out_bytes,
-            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
+        let readback = readback_buffer(ctx, "segment lights readback", out_bytes);
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("segments"),
             layout: &self.layout,
@@ -258,34 +254,6 @@ impl SegmentKernel {
                 message: error.to_string(),
             });
         }
-        read_back(ctx, &readback)
+        Ok(read_buffer(ctx, &readback)?)
     }
-}
-
-/// Maps a read-back buffer and copies it out.
-fn read_back(ctx: &GpuContext, buffer: &wgpu::Buffer) -> Result<Vec<[f32; 2]>, StudyError> {
-    let failed = |message: String| StudyError::GpuKernel {
-        what: "reading segment lights back",
-        message,
-    };
-    let slice = buffer.slice(..);
-    let (sender, receiver) = std::sync::mpsc::channel();
-    slice.map_async(wgpu::MapMode::Read, move |result| {
-        let _ = sender.send(result);
-    });
-    ctx.device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .map_err(|e| failed(e.to_string()))?;
-    receiver
-        .recv()
-        .map_err(|e| failed(e.to_string()))?
-        .map_err(|e| failed(e.to_string()))?;
-    let data = {
-        let view = slice
-            .get_mapped_range()
-            .map_err(|e| failed(e.to_string()))?;
-        bytemuck::cast_slice(&view).to_vec()
-    };
-    buffer.unmap();
-    Ok(data)
 }

@@ -1,37 +1,19 @@
 //! Blocking reads of small GPU buffers: a frame's counters when it is
 //! done, and images for screenshots. Never an image per display frame.
 
+use tetray_gpu::readback::{read_buffer, readback_buffer};
 use tetray_gpu::{GpuContext, GpuTarget};
 use tetray_raycast::Image;
 
 /// Waits for the queue, maps `buffer` and copies it out.
 pub fn map_read(ctx: &GpuContext, buffer: &wgpu::Buffer) -> anyhow::Result<Vec<u8>> {
-    let slice = buffer.slice(..);
-    let (sender, receiver) = std::sync::mpsc::channel();
-    slice.map_async(wgpu::MapMode::Read, move |result| {
-        let _ = sender.send(result);
-    });
-    ctx.device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .map_err(|e| anyhow::anyhow!("waiting for the GPU: {e}"))?;
-    receiver.recv()??;
-    let bytes = slice
-        .get_mapped_range()
-        .map_err(|e| anyhow::anyhow!("mapping a read-back buffer: {e}"))?
-        .to_vec();
-    buffer.unmap();
-    Ok(bytes)
+    Ok(read_buffer(ctx, buffer)?)
 }
 
 /// The float image of a target (premultiplied RGBA, row 0 at the top).
 pub fn read_image(ctx: &GpuContext, target: &GpuTarget) -> anyhow::Result<Image> {
     let size = target.image_bytes();
-    let read = ctx.device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("image readback"),
-        size,
-        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
+    let read = readback_buffer(ctx, "image readback", size);
     let mut encoder = ctx.device.create_command_encoder(&Default::default());
     encoder.copy_buffer_to_buffer(target.image(), 0, &read, 0, size);
     ctx.queue.submit([encoder.finish()]);

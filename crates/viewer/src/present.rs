@@ -316,12 +316,11 @@ pub fn read_texture(ctx: &GpuContext, texture: &DisplayTexture) -> anyhow::Resul
     let row_bytes = width * 4;
     let padded =
         row_bytes.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
-    let buffer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("display readback"),
-        size: u64::from(padded) * u64::from(height),
-        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
+    let buffer = tetray_gpu::readback::readback_buffer(
+        ctx,
+        "display readback",
+        u64::from(padded) * u64::from(height),
+    );
     let mut encoder = ctx.device.create_command_encoder(&Default::default());
     encoder.copy_texture_to_buffer(
         texture.texture.as_image_copy(),
