@@ -4,11 +4,11 @@
 //! renders at full size, because that is what it promises.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 use serde_json::Value;
 
-const BIN: &str = env!("CARGO_BIN_EXE_tetray");
+mod support;
+use support::{run as run_in, text};
 
 /// The PLOT3D datasets shared with the project (`../shared/data/plot3d`).
 fn plot3d(name: &str) -> PathBuf {
@@ -19,24 +19,7 @@ fn plot3d(name: &str) -> PathBuf {
 
 /// A fresh folder under the target directory for one test.
 fn scratch(test: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join("cli")
-        .join(test);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("create the scratch folder");
-    dir
-}
-
-fn run_in(dir: &Path, args: &[&str]) -> Output {
-    Command::new(BIN)
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("run tetray")
-}
-
-fn text(bytes: &[u8]) -> String {
-    String::from_utf8_lossy(bytes).into_owned()
+    support::scratch("cli", test)
 }
 
 /// Runs a command that must succeed; returns its stdout.

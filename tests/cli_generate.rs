@@ -3,11 +3,11 @@
 //! bad arguments rejected with one line and exit code 1.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 use serde_json::Value;
 
-const BIN: &str = env!("CARGO_BIN_EXE_tetray");
+mod support;
+use support::run as run_in;
 
 fn data_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/plot3d")
@@ -15,20 +15,7 @@ fn data_dir() -> PathBuf {
 
 /// A fresh folder under the target directory for one test.
 fn scratch(test: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join("cli-generate")
-        .join(test);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("create the scratch folder");
-    dir
-}
-
-fn run_in(dir: &Path, args: &[&str]) -> Output {
-    Command::new(BIN)
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("run tetray")
+    support::scratch("cli-generate", test)
 }
 
 fn json(dir: &Path, args: &[&str]) -> Value {
