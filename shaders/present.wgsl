@@ -21,7 +21,9 @@ const MODE_SINGLE: u32 = 0u;
 const MODE_DIVIDER: u32 = 1u;
 const MODE_DIFFERENCE: u32 = 2u;
 
-@group(0) @binding(0) var<uniform> params: PresentParams;
+// Read-only storage, not uniform: see common.wgsl (lavapipe specializes
+// shaders on uniform values at every bind).
+@group(0) @binding(0) var<storage, read> params: PresentParams;
 @group(0) @binding(1) var<storage, read> full_a: array<vec4<f32>>;
 @group(0) @binding(2) var<storage, read> full_b: array<vec4<f32>>;
 @group(0) @binding(3) var<storage, read> preview_a: array<vec4<f32>>;

@@ -39,7 +39,9 @@ const STAT_COUNT: u32 = 2u;
 // (host: tetray_project::draws::NO_CLIP).
 const NO_CLIP: u32 = 0xffffffffu;
 
-@group(0) @binding(0) var<uniform> params: Params;
+// Read-only storage, not uniform: see common.wgsl (lavapipe specializes
+// shaders on uniform values at every bind).
+@group(0) @binding(0) var<storage, read> params: Params;
 // Per point: position and active scalar.
 @group(0) @binding(1) var<storage, read> points: array<vec4<f32>>;
 // Per tetrahedron: its points, positively oriented.

@@ -96,11 +96,12 @@ impl GpuRaycaster {
             },
             count: None,
         };
-        let uniform = |binding: u32, dynamic: bool| wgpu::BindGroupLayoutEntry {
+        // Parameters: read-only storage, not uniform (see common.wgsl).
+        let parameters = |binding: u32, dynamic: bool| wgpu::BindGroupLayoutEntry {
             binding,
             visibility: wgpu::ShaderStages::COMPUTE,
             ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Uniform,
+                ty: wgpu::BufferBindingType::Storage { read_only: true },
                 has_dynamic_offset: dynamic,
                 min_binding_size: None,
             },
@@ -109,8 +110,8 @@ impl GpuRaycaster {
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("raycast bindings"),
             entries: &[
-                uniform(0, false),
-                uniform(1, true),
+                parameters(0, false),
+                parameters(1, true),
                 storage(2, true),
                 storage(3, true),
                 storage(4, true),
@@ -246,7 +247,7 @@ impl GpuRaycaster {
         let params_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("params"),
             contents: bytemuck::bytes_of(&params),
-            usage: wgpu::BufferUsages::UNIFORM,
+            usage: wgpu::BufferUsages::STORAGE,
         });
         let (tiles, stride) = tile_buffer(ctx, opts.width, rows);
         let (scene, integrator) = (job.scene, job.integrator);
@@ -398,10 +399,10 @@ struct Tiles {
 }
 
 /// Rows `rows` of a frame `width` wide cut into [`TILE`]-sized
-/// dispatches, one `Tile` uniform each at a stride the dynamic offsets
+/// dispatches, one `Tile` each at a stride the dynamic offsets
 /// accept.
 fn tile_buffer(ctx: &GpuContext, width: u32, rows: Range<u32>) -> (Tiles, u64) {
-    let stride = u64::from(ctx.limits.min_uniform_buffer_offset_alignment).max(16);
+    let stride = u64::from(ctx.limits.min_storage_buffer_offset_alignment).max(16);
     let mut tiles = Vec::new();
     for y0 in rows.clone().step_by(TILE as usize) {
         for x0 in (0..width).step_by(TILE as usize) {
@@ -413,7 +414,7 @@ fn tile_buffer(ctx: &GpuContext, width: u32, rows: Range<u32>) -> (Tiles, u64) {
             });
         }
     }
-    // A uniform buffer may not be empty: an empty row range binds one
+    // A buffer binding may not be empty: an empty row range binds one
     // unused entry and dispatches nothing.
     let mut bytes = vec![0u8; tiles.len().max(1) * stride as usize];
     for (i, tile) in tiles.iter().enumerate() {
@@ -425,7 +426,7 @@ fn tile_buffer(ctx: &GpuContext, width: u32, rows: Range<u32>) -> (Tiles, u64) {
         .create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("tiles"),
             contents: &bytes,
-            usage: wgpu::BufferUsages::UNIFORM,
+            usage: wgpu::BufferUsages::STORAGE,
         });
     (Tiles { buffer, tiles }, stride)
 }

@@ -123,7 +123,7 @@ impl GpuProjector {
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("project bindings"),
             entries: &[
-                buffer(0, vertex | fragment, wgpu::BufferBindingType::Uniform),
+                buffer(0, vertex | fragment, read_only),
                 buffer(1, vertex, read_only),
                 buffer(2, vertex, read_only),
                 buffer(3, fragment, read_only),
@@ -248,7 +248,7 @@ impl GpuProjector {
         let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("project params"),
             contents: bytemuck::bytes_of(&params),
-            usage: wgpu::BufferUsages::UNIFORM,
+            usage: wgpu::BufferUsages::STORAGE,
         });
         let stats = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("project stats"),

@@ -91,7 +91,7 @@ impl SegmentKernel {
                 entry(
                     0,
                     wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
+                        ty: wgpu::BufferBindingType::Storage { read_only: true },
                         has_dynamic_offset: false,
                         min_binding_size: None,
                     },
@@ -199,7 +199,7 @@ impl SegmentKernel {
         let params_buffer = init(
             "segment params",
             bytemuck::bytes_of(&params),
-            wgpu::BufferUsages::UNIFORM,
+            wgpu::BufferUsages::STORAGE,
         );
         let inputs = init(
             "segments",

@@ -214,7 +214,7 @@ impl Presenter {
                     binding: 0,
                     visibility: wgpu::ShaderStages::COMPUTE,
                     ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
+                        ty: wgpu::BufferBindingType::Storage { read_only: true },
                         has_dynamic_offset: false,
                         min_binding_size: None,
                     },
@@ -268,7 +268,7 @@ impl Presenter {
             .create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("present params"),
                 contents: bytemuck::bytes_of(params),
-                usage: wgpu::BufferUsages::UNIFORM,
+                usage: wgpu::BufferUsages::STORAGE,
             });
         let [full_a, full_b, preview_a, preview_b] = targets;
         let bind_group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
