@@ -47,10 +47,9 @@ pub struct ViewArgs {
     pub image_scale: Option<f32>,
     /// Ray casting one display frame may take, in milliseconds: a slower
     /// frame is shown as a preview while the view changes, then refined a
-    /// few rows per display frame. Default 40 on a GPU, 100 on a CPU
-    /// implementation such as lavapipe (about 30 ms per compute pass).
-    #[arg(long, value_name = "MS", value_parser = clap::value_parser!(u32).range(1..=10_000))]
-    pub budget_ms: Option<u32>,
+    /// few rows per display frame.
+    #[arg(long, value_name = "MS", default_value_t = 40, value_parser = clap::value_parser!(u32).range(1..=10_000))]
+    pub budget_ms: u32,
     /// Stop a ray once its opacity reaches A, in (0, 1]; 1 disables.
     #[arg(long, value_name = "A", default_value_t = 1.0, value_parser = parse_alpha, allow_hyphen_values = true)]
     pub early_termination: f32,
@@ -94,9 +93,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
         unit_distance: args.unit_distance,
         opacity_mode: args.opacity_mode.into(),
         image_scale: args.image_scale,
-        budget: args
-            .budget_ms
-            .map(|ms| Duration::from_millis(u64::from(ms))),
+        budget: Duration::from_millis(u64::from(args.budget_ms)),
         early_termination: args.early_termination,
     };
     let dataset = Dataset::from_loaded(input.name, input.loaded);

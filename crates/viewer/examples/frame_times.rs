@@ -5,7 +5,8 @@
 //! frame, an orbit of 30 display frames (previews), then refinement until
 //! the frame is done. Prints JSON.
 //!
-//! `cargo run --release -p tetray-viewer --example frame_times`
+//! `cargo run --release -p tetray-viewer --example frame_times [BUDGET_MS]`
+//! (the ray-casting budget per display frame; default: the viewer's).
 
 use std::time::{Duration, Instant};
 
@@ -45,12 +46,16 @@ fn until_idle(harness: &mut Harness<'_, ViewerApp>) -> Vec<Duration> {
 fn main() -> anyhow::Result<()> {
     let loaded = tetray_mesh::load_plot3d_bytes(XYZ, Some(Q), "embedded Blunt Fin")?;
     let dataset = Dataset::from_loaded("embedded Blunt Fin", loaded);
+    let mut options = ViewerOptions::default();
+    if let Some(ms) = std::env::args().nth(1) {
+        options.budget = Duration::from_millis(ms.parse()?);
+    }
     let start = Instant::now();
     let mut harness = Harness::builder()
         .with_size(egui::Vec2::from(WINDOW_SIZE))
         .with_render_every_step(true)
         .wgpu_setup(tetray_viewer::wgpu_setup())
-        .build_eframe(|cc| ViewerApp::new(cc, dataset, ViewerOptions::default()).expect("viewer"));
+        .build_eframe(|cc| ViewerApp::new(cc, dataset, options).expect("viewer"));
     let startup_frames = until_idle(&mut harness);
     let startup = start.elapsed();
     let first = harness.state().frame_report();

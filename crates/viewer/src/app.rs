@@ -23,11 +23,6 @@ use tetray_mesh::value_range;
 /// Histogram bins under the opacity curve.
 const HISTOGRAM_BINS: usize = 128;
 
-/// Default ray-casting time per display frame on a GPU.
-const GPU_BUDGET: Duration = Duration::from_millis(40);
-/// ... and on a CPU implementation of the API (see [`ViewerOptions::budget`]).
-const CPU_ADAPTER_BUDGET: Duration = Duration::from_millis(100);
-
 /// How the viewer starts.
 #[derive(Debug, Clone)]
 pub struct ViewerOptions {
@@ -42,11 +37,8 @@ pub struct ViewerOptions {
     /// Render pixels per display pixel (default: 1 on a GPU, 0.25 on a
     /// CPU implementation such as lavapipe).
     pub image_scale: Option<f32>,
-    /// Ray-casting time one display frame may take (default: 40 ms on a
-    /// GPU; 100 ms on a CPU implementation such as lavapipe, where every
-    /// compute pass costs about 30 ms whatever its size, so a 40 ms budget
-    /// leaves room for one row per batch).
-    pub budget: Option<Duration>,
+    /// Ray-casting time one display frame may take.
+    pub budget: Duration,
     pub early_termination: f32,
 }
 
@@ -59,7 +51,7 @@ impl Default for ViewerOptions {
             unit_distance: None,
             opacity_mode: OpacityMode::Exact,
             image_scale: None,
-            budget: None,
+            budget: Duration::from_millis(40),
             early_termination: 1.0,
         }
     }
@@ -133,10 +125,9 @@ impl ViewerApp {
             .tf
             .unwrap_or_else(|| TransferFunction::default_for_range(range.0, range.1));
         let tf_editor = TfEditor::new(&tf, range, histogram(&scene.scalar, range, HISTOGRAM_BINS));
-        let cpu_adapter = ctx.is_cpu();
         let image_scale = options
             .image_scale
-            .unwrap_or(if cpu_adapter { 0.25 } else { 1.0 });
+            .unwrap_or(if ctx.is_cpu() { 0.25 } else { 1.0 });
         let settings = Settings {
             renderer: RendererChoice::GpuRaycast,
             methods: [options.method, Method::Exact],
@@ -159,11 +150,7 @@ impl ViewerApp {
             range,
             gpu,
             render_state,
-            progressive: Progressive::new(options.budget.unwrap_or(if cpu_adapter {
-                CPU_ADAPTER_BUDGET
-            } else {
-                GPU_BUDGET
-            })),
+            progressive: Progressive::new(options.budget),
             display: None,
             applied: settings.clone(),
             settings,

@@ -52,7 +52,7 @@ pub const WINDOW: [f32; 2] = [720.0, 420.0];
 pub fn options() -> ViewerOptions {
     ViewerOptions {
         image_scale: Some(0.2),
-        budget: Some(Duration::from_secs(30)),
+        budget: Duration::from_secs(30),
         ..ViewerOptions::default()
     }
 }
