@@ -95,3 +95,37 @@ fn bvh_records_are_the_kernel_entries() {
     assert_eq!(size_of::<FlatPrim>(), 16);
     assert_eq!(offset_of!(FlatPrim, face), 12);
 }
+
+/// No shader binds a uniform buffer. Lavapipe (Mesa's Vulkan on the CPU,
+/// what CI runs) specializes a shader on the values of the uniform
+/// buffers it reads at every dispatch or draw whose bindings changed: about
+/// 30 ms for the ray caster each time, which made every frame and every
+/// viewer batch cost 30 ms whatever its size. Parameters are read-only
+/// storage buffers instead.
+#[test]
+fn no_shader_binds_a_uniform_buffer() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shaders");
+    let mut checked = 0;
+    for entry in std::fs::read_dir(&dir).expect("the shaders folder") {
+        let path = entry.expect("an entry").path();
+        if path.extension().and_then(|e| e.to_str()) != Some("wgsl") {
+            continue;
+        }
+        let source = std::fs::read_to_string(&path).expect("read a shader");
+        for (i, line) in source.lines().enumerate() {
+            let code = line.split("//").next().unwrap_or("");
+            assert!(
+                !code.contains("var<uniform>"),
+                "{}:{}: {line}",
+                path.display(),
+                i + 1
+            );
+        }
+        checked += 1;
+    }
+    assert!(
+        checked >= 8,
+        "only {checked} shaders found in {}",
+        dir.display()
+    );
+}
