@@ -151,7 +151,7 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<()> {
         setup.scene.tet_count()
     );
     let report = tetray_compare::compare(&title, reference, methods)?;
-    let written = report.write(&args.output, args.background.to_array())?;
+    let written = report.write(&args.output, args.background)?;
     print!("{}", report.markdown());
     println!(
         "wrote {} files to {}",

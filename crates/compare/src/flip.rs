@@ -21,6 +21,7 @@ use rayon::prelude::*;
 
 use tetray_raycast::Image;
 
+use crate::metrics::same_size;
 use crate::CompareError;
 
 /// FLIP's default viewing: a 0.7 m wide 4K display seen from 0.7 m.
@@ -34,12 +35,7 @@ pub fn flip(
     reference: &Image,
     pixels_per_degree: f32,
 ) -> Result<Vec<f32>, CompareError> {
-    if (test.width, test.height) != (reference.width, reference.height) {
-        return Err(CompareError::SizeMismatch {
-            test: (test.width, test.height),
-            reference: (reference.width, reference.height),
-        });
-    }
+    same_size(test, reference)?;
     let (w, h) = (test.width as usize, test.height as usize);
     let ycxcz = |image: &Image| -> [Vec<f32>; 3] {
         let pixels: Vec<[f32; 3]> = image

@@ -38,6 +38,8 @@ pub enum CompareError {
         #[source]
         source: std::io::Error,
     },
+    #[error(transparent)]
+    Raster(#[from] tetray_raycast::ImageError),
     #[error("serializing the table: {0}")]
     Json(#[from] serde_json::Error),
 }

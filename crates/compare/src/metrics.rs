@@ -11,18 +11,24 @@ pub const ONE_LEVEL: f32 = 1.0 / 255.0;
 /// Per pixel, the largest absolute difference over the premultiplied RGBA
 /// channels.
 pub fn abs_error(test: &Image, reference: &Image) -> Result<Vec<f32>, CompareError> {
-    if (test.width, test.height) != (reference.width, reference.height) {
-        return Err(CompareError::SizeMismatch {
-            test: (test.width, test.height),
-            reference: (reference.width, reference.height),
-        });
-    }
+    same_size(test, reference)?;
     Ok(test
         .rgba
         .iter()
         .zip(&reference.rgba)
         .map(|(a, b)| (0..4).map(|c| (a[c] - b[c]).abs()).fold(0.0, f32::max))
         .collect())
+}
+
+/// An error unless `test` is as large as `reference`.
+pub fn same_size(test: &Image, reference: &Image) -> Result<(), CompareError> {
+    if (test.width, test.height) != (reference.width, reference.height) {
+        return Err(CompareError::SizeMismatch {
+            test: (test.width, test.height),
+            reference: (reference.width, reference.height),
+        });
+    }
+    Ok(())
 }
 
 /// Summary of a per-pixel error map.

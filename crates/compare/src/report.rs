@@ -4,13 +4,14 @@
 
 use std::path::{Path, PathBuf};
 
+use glam::Vec3;
 use serde::Serialize;
 use tetray_raycast::Image;
 
 use crate::flip::{flip, PIXELS_PER_DEGREE};
 use crate::heatmap::{colour_bar, heat_map};
 use crate::metrics::{abs_error, ErrorStats, ONE_LEVEL};
-use crate::sheet::{sheet, to_rgb8, SheetRow};
+use crate::sheet::{sheet, SheetRow};
 use crate::CompareError;
 
 /// How fast a method made its image.
@@ -191,7 +192,7 @@ impl Report {
 
     /// Writes sheet.png, the per-method maps, table.json and table.md into
     /// `dir` (created if missing); returns the paths written.
-    pub fn write(&self, dir: &Path, background: [f32; 3]) -> Result<Vec<PathBuf>, CompareError> {
+    pub fn write(&self, dir: &Path, background: Vec3) -> Result<Vec<PathBuf>, CompareError> {
         std::fs::create_dir_all(dir).map_err(|source| CompareError::Io {
             path: dir.to_path_buf(),
             source,
@@ -223,8 +224,8 @@ impl Report {
         }
         let renders = std::iter::once(&self.reference)
             .chain(&self.methods)
-            .map(|m| Some(to_rgb8(&m.image, background)))
-            .collect();
+            .map(|m| m.image.to_rgb8(background).map(Some))
+            .collect::<Result<_, _>>()?;
         let columns: Vec<String> = std::iter::once(format!("{} (REF)", self.reference.label))
             .chain(self.rows.iter().map(|r| r.label.clone()))
             .collect();
@@ -339,7 +340,7 @@ mod tests {
     fn writes_the_sheet_maps_and_tables() {
         let dir = std::env::temp_dir().join(format!("tetray-compare-{}", std::process::id()));
         let report = compare("t", method("ref", 0.5), vec![method("a", 0.4)]).expect("compare");
-        let written = report.write(&dir, [0.0; 3]).expect("write");
+        let written = report.write(&dir, Vec3::ZERO).expect("write");
         let names: Vec<String> = written
             .iter()
             .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())

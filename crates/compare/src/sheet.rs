@@ -1,31 +1,13 @@
-//! Images as 8-bit RGB and a labelled grid of them: one column per method,
+//! A labelled grid of 8-bit RGB pictures: one column per method,
 //! one row per kind of picture (render, absolute error, perceptual error),
 //! each row with its title and, where it has one, its colour bar.
 
 use image::{Rgb, RgbImage};
-use tetray_raycast::Image;
 
 use crate::font::{draw_text, text_width, LINE};
 
 const GAP: u32 = 8;
 const WHITE: Rgb<u8> = Rgb([255, 255, 255]);
-
-/// `image` (premultiplied RGBA) over an opaque `background`, as written to
-/// a PNG: each channel clamped to [0, 1] and rounded to 8 bits.
-pub fn to_rgb8(image: &Image, background: [f32; 3]) -> RgbImage {
-    let bytes = image
-        .rgba
-        .iter()
-        .flat_map(|p| {
-            let keep = 1.0 - p[3];
-            std::array::from_fn::<u8, 3, _>(|c| {
-                ((p[c] + keep * background[c]).clamp(0.0, 1.0) * 255.0).round() as u8
-            })
-        })
-        .collect();
-    RgbImage::from_raw(image.width, image.height, bytes)
-        .unwrap_or_else(|| RgbImage::new(image.width, image.height))
-}
 
 /// One row of the sheet.
 pub struct SheetRow {
@@ -130,14 +112,5 @@ mod tests {
         assert_eq!(out.get_pixel(GAP, top1).0, [255, 255, 255], "empty cell");
         assert_eq!(out.get_pixel(2 * GAP + 10, top1).0, [255, 0, 0]);
         assert_eq!(out.get_pixel(3 * GAP + 20, top1).0, [0, 0, 255], "bar");
-    }
-
-    #[test]
-    fn pixels_composite_over_the_background() {
-        let image = Image::from_pixels(2, 1, vec![[0.5, 0.0, 0.0, 0.5], [2.0, 0.0, 0.0, 1.0]])
-            .expect("image");
-        let rgb = to_rgb8(&image, [0.0, 0.0, 1.0]);
-        assert_eq!(rgb.get_pixel(0, 0).0, [128, 0, 128]);
-        assert_eq!(rgb.get_pixel(1, 0).0, [255, 0, 0]);
     }
 }

@@ -97,24 +97,26 @@ impl Image {
             })
     }
 
-    /// 8-bit RGB PNG of the image composited over `background`
-    /// (`c + (1 - a) * bg`), clamped to [0, 1], with no sRGB transform: the
-    /// stored values are the linear ones, as VTK's renders store them.
-    pub fn write_png(&self, path: &Path, background: Vec3) -> Result<(), ImageError> {
+    /// The image composited over `background` (`c + (1 - a) * bg`) as 8-bit
+    /// RGB, clamped to [0, 1], with no sRGB transform: the stored values are
+    /// the linear ones, as VTK's renders store them.
+    pub fn to_rgb8(&self, background: Vec3) -> Result<image::RgbImage, ImageError> {
         let bytes: Vec<u8> = self
             .rgba
             .iter()
             .flat_map(|&p| composite_over(p, background).map(to_u8))
             .collect();
-        let buffer = image::RgbImage::from_raw(self.width, self.height, bytes).ok_or(
-            ImageError::SizeMismatch {
-                width: self.width,
-                height: self.height,
-                expected: self.width as usize * self.height as usize,
-                actual: self.rgba.len(),
-            },
-        )?;
-        buffer
+        image::RgbImage::from_raw(self.width, self.height, bytes).ok_or(ImageError::SizeMismatch {
+            width: self.width,
+            height: self.height,
+            expected: self.width as usize * self.height as usize,
+            actual: self.rgba.len(),
+        })
+    }
+
+    /// [`Image::to_rgb8`] written as a PNG.
+    pub fn write_png(&self, path: &Path, background: Vec3) -> Result<(), ImageError> {
+        self.to_rgb8(background)?
             .save_with_format(path, image::ImageFormat::Png)
             .map_err(|source| ImageError::Write {
                 path: path.to_path_buf(),

@@ -63,3 +63,12 @@ fn write_errors_name_the_path() {
         Err(ImageError::SizeMismatch { .. })
     ));
 }
+
+#[test]
+fn pixels_composite_over_the_background_as_8_bits() {
+    let image =
+        Image::from_pixels(2, 1, vec![[0.5, 0.0, 0.0, 0.5], [2.0, 0.0, 0.0, 1.0]]).expect("image");
+    let rgb = image.to_rgb8(Vec3::new(0.0, 0.0, 1.0)).expect("rgb");
+    assert_eq!(rgb.get_pixel(0, 0).0, [128, 0, 128]);
+    assert_eq!(rgb.get_pixel(1, 0).0, [255, 0, 0]);
+}
