@@ -10,10 +10,10 @@ use serde_json::Value;
 mod support;
 use support::{run as run_in, text};
 
-/// The PLOT3D datasets shared with the project (`../shared/data/plot3d`).
+/// The PLOT3D datasets of the repository (`data/plot3d`).
 fn plot3d(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared/data/plot3d")
+        .join("data/plot3d")
         .join(name)
 }
 
@@ -164,7 +164,7 @@ fn info_prints_the_tet_counts() {
     assert_eq!(blunt["tets"], 187_318);
     assert_eq!(blunt["input_cells"], 37_479);
     assert_eq!(blunt["components"], 1);
-    let asset = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/bluntfinxyz.bin");
+    let asset = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/plot3d/bluntfinxyz.bin");
     let from_file = json(&dir, &["info", "--json", asset.to_str().unwrap()]);
     assert_eq!(from_file["tets"], blunt["tets"]);
     assert_eq!(from_file["fields"], blunt["fields"]);

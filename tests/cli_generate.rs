@@ -10,7 +10,7 @@ mod support;
 use support::run as run_in;
 
 fn data_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/plot3d")
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("data/plot3d")
 }
 
 /// A fresh folder under the target directory for one test.

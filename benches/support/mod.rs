@@ -8,8 +8,8 @@ use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunc
 use tetray_mesh::LoadedMesh;
 use tetray_raycast::{Camera, Scene};
 
-const XYZ: &[u8] = include_bytes!("../../assets/bluntfinxyz.bin");
-const Q: &[u8] = include_bytes!("../../assets/bluntfinq.bin");
+const XYZ: &[u8] = include_bytes!("../../data/plot3d/bluntfinxyz.bin");
+const Q: &[u8] = include_bytes!("../../data/plot3d/bluntfinq.bin");
 
 pub fn blunt_fin_mesh() -> LoadedMesh {
     tetray_mesh::load_plot3d_bytes(XYZ, Some(Q), "Blunt Fin").expect("the embedded dataset loads")

@@ -13,8 +13,8 @@ use tetray_raycast::{Camera, Scene};
 use super::args::{CameraArgs, IntegratorArgs, MeshArgs, WalkArgs};
 
 /// The embedded default dataset: NASA's Blunt Fin, PLOT3D big-endian.
-const BLUNT_FIN_XYZ: &[u8] = include_bytes!("../../assets/bluntfinxyz.bin");
-const BLUNT_FIN_Q: &[u8] = include_bytes!("../../assets/bluntfinq.bin");
+const BLUNT_FIN_XYZ: &[u8] = include_bytes!("../../data/plot3d/bluntfinxyz.bin");
+const BLUNT_FIN_Q: &[u8] = include_bytes!("../../data/plot3d/bluntfinq.bin");
 pub const EMBEDDED_NAME: &str = "embedded Blunt Fin";
 
 /// A mesh as loaded, with what it took.

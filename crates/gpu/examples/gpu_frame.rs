@@ -12,7 +12,7 @@ fn main() -> anyhow::Result<()> {
     let args: Vec<String> = std::env::args().collect();
     let size: u32 = args.get(1).map_or(256, |s| s.parse().unwrap());
     let method: Method = args.get(2).map_or("ppi", |s| s.as_str()).parse()?;
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/plot3d");
     let loaded = load(&root.join("bluntfinxyz.bin"), &LoadOptions::default())?;
     let scene = Scene::from_loaded(loaded, "density", BuildPreset::default())?;
     let (lo, hi) = scene.bounds();

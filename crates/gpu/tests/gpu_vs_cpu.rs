@@ -379,7 +379,7 @@ fn plot3d_datasets_match_the_reference() {
     if gpu().is_none() {
         return;
     }
-    let data = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data/plot3d");
+    let data = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/plot3d");
     for name in ["bluntfin", "post", "comb"] {
         let loaded = tetray_mesh::load(&data.join(format!("{name}xyz.bin")), &Default::default())
             .expect("dataset");

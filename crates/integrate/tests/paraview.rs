@@ -375,7 +375,7 @@ fn garbage_never_panics() {
 
 fn asset(name: &str) -> std::path::PathBuf {
     std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../assets/presets")
+        .join("../../data/presets")
         .join(name)
 }
 

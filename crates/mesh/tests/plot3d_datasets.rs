@@ -1,4 +1,4 @@
-//! The three NASA PLOT3D datasets (see shared/data/README.md): tetrahedron
+//! The three NASA PLOT3D datasets (see data/README.md): tetrahedron
 //! counts, face matching, conformity, the collapsed cells of Blunt Fin and
 //! the concave cells of the Combustor. All counts are exact.
 
@@ -11,17 +11,13 @@ use tetray_mesh::{
 };
 
 fn data_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data/plot3d")
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/plot3d")
 }
 
-/// Blunt Fin comes from the project's assets; the others from shared data.
 fn grid_path(name: &str) -> PathBuf {
-    let asset = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("../../assets/{name}xyz.bin"));
-    if name == "bluntfin" {
-        assert!(asset.is_file(), "missing {}", asset.display());
-        return asset;
-    }
-    data_dir().join(format!("{name}xyz.bin"))
+    let path = data_dir().join(format!("{name}xyz.bin"));
+    assert!(path.is_file(), "missing {}", path.display());
+    path
 }
 
 fn load_dataset(name: &str) -> LoadedMesh {
@@ -194,11 +190,4 @@ fn combustor() {
     assert_eq!(direct.diagonal_parity, 1);
     check_interior_faces(&loaded.topology);
     assert_eq!(check_conforming(&loaded, [57, 33, 25], 1), 0);
-}
-
-#[test]
-fn the_embedded_asset_matches_the_shared_copy() {
-    let asset = std::fs::read(grid_path("bluntfin")).unwrap();
-    let shared = std::fs::read(data_dir().join("bluntfinxyz.bin")).unwrap();
-    assert_eq!(asset, shared);
 }

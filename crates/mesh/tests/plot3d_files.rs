@@ -219,7 +219,7 @@ fn expect_truncated(
 
 #[test]
 fn truncated_blunt_fin_never_panics() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets");
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/plot3d");
     let xyz = std::fs::read(dir.join("bluntfinxyz.bin")).unwrap();
     let q = std::fs::read(dir.join("bluntfinq.bin")).unwrap();
     let q_needed = 12 + 16 + 20 * 40 * 32 * 32;

@@ -65,7 +65,7 @@ fn written_files_read_back_bit_exact() {
 
 #[test]
 fn blunt_fin_round_trips_to_the_same_mesh() {
-    let assets = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets");
+    let assets = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/plot3d");
     let (xyz, q) = (assets.join("bluntfinxyz.bin"), assets.join("bluntfinq.bin"));
     let source = read_plot3d_grid_files(&xyz, Some(&q)).unwrap();
     let (mut xyz_out, mut q_out) = (Vec::new(), Vec::new());

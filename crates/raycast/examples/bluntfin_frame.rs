@@ -1,4 +1,4 @@
-//! Times CPU frames of the Blunt Fin (assets/bluntfin{xyz,q}.bin).
+//! Times CPU frames of the Blunt Fin (data/plot3d/bluntfin{xyz,q}.bin).
 //! Usage: bluntfin_frame [size] [frames] [threads] [method|absorb]
 
 use std::path::Path;
@@ -39,7 +39,7 @@ fn main() {
     let frames: usize = args.get(2).map_or(5, |s| s.parse().unwrap());
     let threads: usize = args.get(3).map_or(2, |s| s.parse().unwrap());
     let method = args.get(4).cloned().unwrap_or_else(|| "absorb".to_string());
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/plot3d");
     let loaded = load(&root.join("bluntfinxyz.bin"), &LoadOptions::default()).unwrap();
     let t = Instant::now();
     let scene = Scene::from_loaded(loaded, "density", BuildPreset::default()).unwrap();

@@ -263,7 +263,7 @@ fn centre_surround_kernel_ignores_constant_fields() {
 fn speed_study_small() {
     use tetray_integrate::Method;
     use tetray_study::speed::{self, SpeedOptions};
-    let data_dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data/plot3d");
+    let data_dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/plot3d");
     let mut out = out_dir("speed");
     let options = SpeedOptions {
         size: (32, 32),

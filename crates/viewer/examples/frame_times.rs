@@ -14,8 +14,8 @@ use egui::{Event, Modifiers, PointerButton, Pos2};
 use egui_kittest::Harness;
 use tetray_viewer::{Dataset, ViewerApp, ViewerOptions, WINDOW_SIZE};
 
-const XYZ: &[u8] = include_bytes!("../../../assets/bluntfinxyz.bin");
-const Q: &[u8] = include_bytes!("../../../assets/bluntfinq.bin");
+const XYZ: &[u8] = include_bytes!("../../../data/plot3d/bluntfinxyz.bin");
+const Q: &[u8] = include_bytes!("../../../data/plot3d/bluntfinq.bin");
 const ORBIT_FRAMES: usize = 30;
 
 fn ms(d: Duration) -> f64 {

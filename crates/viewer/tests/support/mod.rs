@@ -9,8 +9,8 @@ use std::time::{Duration, Instant};
 use egui_kittest::Harness;
 use tetray_viewer::{Dataset, ViewerApp, ViewerOptions};
 
-const BLUNT_FIN_XYZ: &[u8] = include_bytes!("../../../../assets/bluntfinxyz.bin");
-const BLUNT_FIN_Q: &[u8] = include_bytes!("../../../../assets/bluntfinq.bin");
+const BLUNT_FIN_XYZ: &[u8] = include_bytes!("../../../../data/plot3d/bluntfinxyz.bin");
+const BLUNT_FIN_Q: &[u8] = include_bytes!("../../../../data/plot3d/bluntfinq.bin");
 
 /// The default dataset, as `tetray view` loads it with no mesh.
 pub fn blunt_fin() -> Dataset {
