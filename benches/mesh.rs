@@ -36,10 +36,13 @@ fn bvh(c: &mut Criterion) {
     group.sample_size(10);
     group.measurement_time(Duration::from_secs(3));
     group.throughput(Throughput::Elements(faces));
-    let preset = BuildPreset::default();
-    group.bench_function(BenchmarkId::from_parameter(preset.name()), |b| {
-        b.iter(|| BoundaryBvh::build(mesh, topology, preset).expect("bvh"))
-    });
+    // Every preset: build time against query speed is the trade-off they
+    // make (the queries below use the default).
+    for preset in BuildPreset::ALL {
+        group.bench_function(BenchmarkId::from_parameter(preset.name()), |b| {
+            b.iter(|| BoundaryBvh::build(mesh, topology, preset).expect("bvh"))
+        });
+    }
     group.finish();
 
     // Entry queries: the primary rays of a 128 x 128 view of the mesh.

@@ -26,14 +26,17 @@ fn f(value: &Value) -> f64 {
 }
 
 /// The default comparison on the embedded Blunt Fin (nonconvex: rays
-/// leave and re-enter it). The GPU ray caster is held to 1e-4 against the
-/// f64 reference (measured 2e-6 to 1.2e-5 over five views: f32 plane
-/// crossings and Psi lookups) with no pixel a PNG shows as different; each
-/// projection sort shows errors a PNG shows (measured 0.6% to 1.7% of the
-/// pixels over 1/255) and a mean error at least 10x the ray caster's. No
-/// projected segment runs past its cell: the worst pixel stays under 0.3
-/// (0.11 measured; 0.71 before segments were clamped to their cell's depth
-/// range, from exit planes nearly parallel to the rays).
+/// leave and re-enter it). The table's numbers are checked against the
+/// same renders made by `tetray render` and measured here: max and mean
+/// absolute error of the GPU ray caster and of the MPVO projection against
+/// the reference EXR (to 1e-6: the same f32 images, summed in another
+/// order). The GPU ray caster is held to 1e-4 against the f64 reference
+/// (measured 2e-6 to 1.2e-5 over five views: f32 plane crossings and Psi
+/// lookups) with no pixel a PNG shows as different. No projected segment
+/// runs past its cell: each sort's worst pixel stays under 0.3 (0.11
+/// measured; 0.71 before segments were clamped to their cell's depth
+/// range). How far each sort is from the reference is what the table
+/// reports, not what this test requires: a better sort must pass too.
 #[test]
 fn the_ray_caster_matches_the_reference_where_the_projection_does_not() {
     if !have_gpu() {
@@ -73,17 +76,56 @@ fn the_ray_caster_matches_the_reference_where_the_projection_does_not() {
     let gpu = &rows[0]["abs_error"];
     assert!(f(&gpu["max"]) < 1e-4, "{gpu}");
     assert_eq!(gpu["over_one_level"], 0, "{gpu}");
-    for row in &rows[1..] {
+    let pixels = 64.0 * 48.0;
+    for row in rows {
         let e = &row["abs_error"];
-        assert!(f(&e["over_one_level"]) > 0.0, "{}: {e}", row["label"]);
-        assert!(f(&e["max"]) < 0.3, "{}: {e}", row["label"]);
-        assert!(
-            f(&e["mean"]) > 10.0 * f(&gpu["mean"]),
-            "{}: {e}",
-            row["label"]
-        );
+        let label = &row["label"];
+        assert!(f(&e["max"]) < 0.3, "{label}: {e}");
+        // The statistics of one error map are consistent with each other.
+        assert!(f(&e["p99"]) <= f(&e["max"]) && f(&e["mean"]) <= f(&e["max"]));
+        let over = f(&e["over_one_level"]);
+        assert!((0.0..=pixels).contains(&over), "{label}: {e}");
+        assert_eq!(over == 0.0, f(&e["max"]) <= 1.0 / 255.0, "{label}: {e}");
         assert!(f(&row["speed"]["ms_per_frame"]) > 0.0);
         assert!(f(&row["speed"]["segments_per_s"]) > 0.0);
+    }
+    // The numbers against the same images measured independently.
+    let view = ["--size", "64x48", "--azimuth", "180", "--elevation", "30"];
+    let render = |name: &str, extra: &[&str]| {
+        let mut args = vec!["render"];
+        args.extend_from_slice(&view);
+        args.extend_from_slice(extra);
+        args.extend_from_slice(&["--early-termination", "1", "-o", name]);
+        let out = run(&dir, &args);
+        assert!(out.status.success(), "{name}: {}", text(&out.stderr));
+        image::open(dir.join(name))
+            .expect("EXR")
+            .into_rgba32f()
+            .into_raw()
+    };
+    let reference = render(
+        "reference.exr",
+        &["--renderer", "cpu", "--integrator", "reference"],
+    );
+    for (row, extra) in [
+        (&rows[0], &["--renderer", "gpu"][..]),
+        (&rows[2], &["--renderer", "project", "--sort", "mpvo"][..]),
+    ] {
+        let image = render("method.exr", extra);
+        let errors: Vec<f64> = image
+            .chunks(4)
+            .zip(reference.chunks(4))
+            .map(|(a, b)| {
+                (0..4)
+                    .map(|c| f64::from((a[c] - b[c]).abs()))
+                    .fold(0.0, f64::max)
+            })
+            .collect();
+        let max = errors.iter().copied().fold(0.0, f64::max);
+        let mean = errors.iter().sum::<f64>() / errors.len() as f64;
+        let e = &row["abs_error"];
+        assert!((f(&e["max"]) - max).abs() <= 1e-6, "{}: {e} vs max {max}", row["label"]);
+        assert!((f(&e["mean"]) - mean).abs() <= 1e-6, "{}: {e} vs mean {mean}", row["label"]);
     }
     for row in rows {
         for map in ["abs_map", "flip_map"] {

@@ -23,7 +23,9 @@ pub struct MeshArgs {
 }
 
 /// VTK/ParaView camera. Whatever is not given comes from a
-/// `vtkRenderer::ResetCamera` fit of the mesh bounds, looking down -z.
+/// `vtkRenderer::ResetCamera` fit of the mesh bounds, looking down -z;
+/// with no camera flag at all, the fit is then turned to an oblique view
+/// ([`DEFAULT_VIEW`]).
 #[derive(Debug, Clone, Default, Args)]
 pub struct CameraArgs {
     /// Camera position x,y,z (world units).
@@ -43,13 +45,38 @@ pub struct CameraArgs {
     #[arg(long, value_name = "S", value_parser = parse_positive, allow_hyphen_values = true)]
     pub parallel_scale: Option<f32>,
     /// Rotate the camera about the view-up by this many degrees, after the
-    /// fit (vtkCamera::Azimuth).
-    #[arg(long, value_name = "DEGREES", default_value_t = 0.0, value_parser = parse_finite, allow_hyphen_values = true)]
-    pub azimuth: f32,
+    /// fit (vtkCamera::Azimuth). Default 0 when any camera flag is given;
+    /// with none, the default view is oblique (see [`DEFAULT_VIEW`]).
+    #[arg(long, value_name = "DEGREES", value_parser = parse_finite, allow_hyphen_values = true)]
+    pub azimuth: Option<f32>,
     /// Then rotate it up by this many degrees (vtkCamera::Elevation,
-    /// followed by OrthogonalizeViewUp).
-    #[arg(long, value_name = "DEGREES", default_value_t = 0.0, value_parser = parse_finite, allow_hyphen_values = true)]
-    pub elevation: f32,
+    /// followed by OrthogonalizeViewUp). Default as --azimuth.
+    #[arg(long, value_name = "DEGREES", value_parser = parse_finite, allow_hyphen_values = true)]
+    pub elevation: Option<f32>,
+}
+
+/// Azimuth and elevation (degrees) after the ResetCamera fit when no
+/// camera flag is given: an oblique view that shows a volume's depth (a
+/// fit alone looks straight down -z and flattens it).
+pub const DEFAULT_VIEW: (f32, f32) = (30.0, 20.0);
+
+impl CameraArgs {
+    /// Azimuth and elevation to apply: VTK's exactly (0 where not given)
+    /// when any of position, focal point, view-up, azimuth or elevation is
+    /// given, or the parallel scale; else [`DEFAULT_VIEW`].
+    pub fn rotation(&self) -> (f32, f32) {
+        let given = self.camera_position.is_some()
+            || self.focal_point.is_some()
+            || self.view_up.is_some()
+            || self.parallel_scale.is_some()
+            || self.azimuth.is_some()
+            || self.elevation.is_some();
+        if given {
+            (self.azimuth.unwrap_or(0.0), self.elevation.unwrap_or(0.0))
+        } else {
+            DEFAULT_VIEW
+        }
+    }
 }
 
 /// How a transfer-function opacity becomes an attenuation coefficient.

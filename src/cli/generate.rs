@@ -32,7 +32,7 @@ pub enum GenerateCommand {
     Solid(SolidArgs),
 }
 
-/// The NASA datasets of the shared data folder.
+/// The NASA datasets of the repository's data folder.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum Dataset {
     Bluntfin,
@@ -68,8 +68,9 @@ pub struct Plot3dArgs {
     /// Solution file of --grid.
     #[arg(long, value_name = "FILE", requires = "grid")]
     pub q: Option<PathBuf>,
-    /// Folder of the datasets. Default: $TETRAY_DATA_DIR, else the shared
-    /// data folder beside the source tree (../shared/data/plot3d).
+    /// Folder of the datasets. Default: $TETRAY_DATA_DIR, else the
+    /// repository's data/plot3d (found from the source tree tetray was
+    /// built from).
     #[arg(long, value_name = "DIR")]
     pub data_dir: Option<PathBuf>,
     /// Tetrahedra wanted (at least): 1M, 10M, 40M or a whole number (k, M,
@@ -238,11 +239,7 @@ fn source_files(args: &Plot3dArgs) -> anyhow::Result<(PathBuf, Option<PathBuf>)>
     let Some(dataset) = args.dataset else {
         bail!("give --dataset or --grid");
     };
-    let dir = match (&args.data_dir, std::env::var_os("TETRAY_DATA_DIR")) {
-        (Some(dir), _) => dir.clone(),
-        (None, Some(dir)) => PathBuf::from(dir),
-        (None, None) => Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/plot3d"),
-    };
+    let dir = super::datasets::plot3d_dir(args.data_dir.as_deref(), "--data-dir")?;
     let xyz = dir.join(format!("{}xyz.bin", dataset.name()));
     let q = dir.join(format!("{}q.bin", dataset.name()));
     for file in [&xyz, &q] {

@@ -3,6 +3,7 @@
 mod args;
 mod bench;
 mod compare;
+mod datasets;
 mod generate;
 mod info;
 mod psi;

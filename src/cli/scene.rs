@@ -289,7 +289,8 @@ fn table_note(integrator: &ScalarIntegrator, options: &IntegratorOptions) -> Str
 
 /// The camera: VTK's ResetCamera fit of `bounds` for a `width x height`
 /// image (looking down -z, or along the given position and focal point),
-/// the given values, then azimuth, elevation and OrthogonalizeViewUp.
+/// the given values, then azimuth, elevation (the oblique default when no
+/// camera flag is given) and OrthogonalizeViewUp.
 fn build_camera(
     args: &CameraArgs,
     (lo, hi): (Vec3, Vec3),
@@ -324,8 +325,9 @@ fn build_camera(
         }
     }
     camera.basis().context("bad camera")?;
-    camera.azimuth(args.azimuth).context("bad camera")?;
-    camera.elevation(args.elevation).context("bad camera")?;
+    let (azimuth, elevation) = args.rotation();
+    camera.azimuth(azimuth).context("bad camera")?;
+    camera.elevation(elevation).context("bad camera")?;
     camera.orthogonalize_view_up().context("bad camera")?;
     Ok(camera)
 }

@@ -60,8 +60,10 @@ pub struct StudyArgs {
     #[arg(long, value_name = "N", default_value_t = 600)]
     pub pixels: u32,
     /// speed: folder of the PLOT3D datasets (bluntfin, post, comb).
-    #[arg(long, value_name = "DIR", default_value = "../shared/data/plot3d")]
-    pub data: PathBuf,
+    /// Default: $TETRAY_DATA_DIR, else the repository's data/plot3d (found
+    /// from the source tree tetray was built from).
+    #[arg(long, value_name = "DIR")]
+    pub data: Option<PathBuf>,
     /// speed: the dissertation's size (800x800, 8-frame orbits, meshes
     /// of 1 M to 40 M tetrahedra); hours on a CPU.
     #[arg(long)]
@@ -236,10 +238,11 @@ fn run_one(
             s.checks
         }
         StudyName::Speed => {
+            let data = super::datasets::plot3d_dir(args.data.as_deref(), "--data")?;
             let base = if args.full {
-                SpeedOptions::full(args.data.clone())
+                SpeedOptions::full(data)
             } else {
-                SpeedOptions::small(args.data.clone())
+                SpeedOptions::small(data)
             };
             let options = SpeedOptions {
                 size: args.size.unwrap_or(base.size),
@@ -253,12 +256,6 @@ fn run_one(
                 gpu,
                 data_dir: base.data_dir,
             };
-            if !options.data_dir.is_dir() {
-                bail!(
-                    "--data {}: no such folder (the PLOT3D datasets bluntfin, post, comb)",
-                    options.data_dir.display()
-                );
-            }
             let s = speed::run(&options, &mut out, &log)?;
             println!(
                 "  {}; gpu: {}",

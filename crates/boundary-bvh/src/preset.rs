@@ -19,7 +19,7 @@ pub enum BuildPreset {
     /// every frame: on the dissertation grids (14k-28k boundary faces) this
     /// builds in under 0.1 s and answers entry queries 1.05-1.6x and
     /// queries from inside the mesh 1.1-3.4x faster than `medium`
-    /// (`tests/measure.rs`). Pick a faster preset for meshes with millions of
+    /// (measured then; now `cargo bench --bench mesh -- bvh`). Pick a faster preset for meshes with millions of
     /// boundary faces (about 3 us per face here, single-threaded).
     #[default]
     VerySlow,

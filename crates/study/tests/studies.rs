@@ -156,6 +156,11 @@ fn accuracy_study_small() {
     for d in [0.001, 1.0, 100.0] {
         let ppi = get(Device::Cpu, "ppi", d).unwrap();
         let average = get(Device::Cpu, "average", d).unwrap();
+        eprintln!(
+            "D = {d}: cpu ppi {ppi:.2e}, gpu ppi {:?}, gpu exact {:?}",
+            get(Device::Gpu, "ppi", d),
+            get(Device::Gpu, "exact", d)
+        );
         assert!(
             ppi < 1e-5 && ppi < average,
             "D = {d}: ppi {ppi} average {average}"
@@ -205,6 +210,9 @@ fn smoothness_study_small() {
     let names: Vec<&str> = names.iter().map(String::as_str).collect();
     assert_files(&out, &names);
     assert_eq!(summary.profiles.len(), 6 * 3 * 3);
+    for check in &summary.checks {
+        eprintln!("{}: {}", check.name, check.detail);
+    }
     assert!(
         failed(&summary.checks).is_empty(),
         "{:?}",

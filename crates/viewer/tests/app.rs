@@ -181,6 +181,7 @@ fn switching_and_comparing_methods() {
     let (worst, _) = difference(&preint, &ppi, 0);
     assert!(worst > 0, "the method changed the image");
     let (_, far) = difference(&preint, &ppi, 24);
+    eprintln!("preintegrated vs ppi: worst {worst}, {far} pixels over 24");
     assert!(
         far <= (ppi.width() * ppi.height() / 50) as usize,
         "{far} pixels far from ppi"
@@ -231,6 +232,10 @@ fn the_cell_projection_shows_the_ray_casters_view() {
     let (worst, _) = difference(&projected, &raycast, 0);
     assert!(worst > 0, "the projection made its own image");
     let (_, far) = difference(&projected, &raycast, 24);
+    for level in [1, 2, 4, 8, 16, 24] {
+        let (_, n) = difference(&projected, &raycast, level);
+        eprintln!("projection vs ray caster: {n} pixels over {level} (worst {worst})");
+    }
     assert!(
         far <= (raycast.width() * raycast.height() / 50) as usize,
         "{far} pixels far from the ray caster's"

@@ -141,6 +141,7 @@ pub fn assert_close(
     outlier: f32,
 ) {
     let (worst, over) = difference(actual, expected, max_diff);
+    eprintln!("{test}: max {worst:.2e}, {over} pixels over {max_diff:.0e}");
     if over > budget || worst > outlier {
         let dir = write_failure(test, actual, expected);
         panic!(

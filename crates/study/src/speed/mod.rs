@@ -339,8 +339,8 @@ pub fn run(
 }
 
 /// Every measurement rendered something; both renderers walked the same
-/// segments (they share the walk and the exit rule); frames slow down as
-/// the image grows past the per-frame overhead (fig. 6.3).
+/// segments (they share the walk and the exit rule); larger images walk
+/// more segments. No check reads a clock.
 fn checks(table: &[Row], resolution: &[Row]) -> Vec<Check> {
     let mut checks = Vec::new();
     let empty: Vec<String> = table
@@ -370,7 +370,12 @@ fn checks(table: &[Row], resolution: &[Row]) -> Vec<Check> {
             ));
         }
     }
-    for renderer in ["cpu", "gpu", "projection"] {
+    // Frame times are measured, not checked: on a shared machine one
+    // wall-clock sample of each size says nothing reliable (speed belongs in
+    // the benchmarks). What cannot depend on load is the work: a ray caster
+    // integrates a segment per pixel per cell crossed, so an image of 64x
+    // the pixels walks more segments.
+    for renderer in ["cpu", "gpu"] {
         let rows: Vec<&Row> = resolution
             .iter()
             .filter(|r| r.renderer == renderer)
@@ -378,16 +383,16 @@ fn checks(table: &[Row], resolution: &[Row]) -> Vec<Check> {
         if let (Some(first), Some(last)) = (rows.first(), rows.last()) {
             if last.width * last.height >= 64 * first.width * first.height {
                 checks.push(Check::new(
-                    format!("{renderer}: a frame of 64x the pixels takes longer"),
-                    last.ms_per_frame > first.ms_per_frame,
+                    format!("{renderer}: a frame of 64x the pixels walks more segments"),
+                    last.segments_per_frame > first.segments_per_frame,
                     format!(
-                        "{}x{} {:.2} ms, {}x{} {:.2} ms",
+                        "{}x{} {:.0} segments, {}x{} {:.0} segments",
                         first.width,
                         first.height,
-                        first.ms_per_frame,
+                        first.segments_per_frame,
                         last.width,
                         last.height,
-                        last.ms_per_frame
+                        last.segments_per_frame
                     ),
                 ));
             }
