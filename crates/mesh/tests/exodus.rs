@@ -1,0 +1,325 @@
+//! The Exodus II reader: the ParaView tutorial file, round trips through
+//! netCDF classic files written here (CDF-1, CDF-2, CDF-5), a netCDF-4 file
+//! made by an independent writer, and malformed input.
+
+mod exodus_common;
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use exodus_common::{Block, ElemVar, Model, Version};
+use tetray_mesh::{
+    load, read_exodus_bytes, ElementBlock, ExodusError, ExodusOptions, LoadOptions, MeshError,
+    TetMesh,
+};
+
+fn data(path: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../data")
+        .join(path)
+}
+
+fn field<'a>(mesh: &'a TetMesh, name: &str) -> &'a [f32] {
+    let names: Vec<&str> = mesh.fields.iter().map(|f| f.name.as_str()).collect();
+    &mesh
+        .fields
+        .iter()
+        .find(|f| f.name == name)
+        .unwrap_or_else(|| panic!("no field {name} among {names:?}"))
+        .values
+}
+
+fn range(values: &[f32]) -> (f32, f32) {
+    values
+        .iter()
+        .fold((f32::MAX, f32::MIN), |(lo, hi), &v| (lo.min(v), hi.max(v)))
+}
+
+fn close(a: f32, b: f64) -> bool {
+    (f64::from(a) - b).abs() <= 1e-6 * b.abs().max(1e-3)
+}
+
+/// Expected numbers from Python netCDF4 1.7 on the same file (offline):
+/// `d = netCDF4.Dataset("disk_out_ref.ex2")`; dimensions num_nodes 8499,
+/// num_el_in_blk1 7472, connect1 elem_type "HEX8", eb_prop1 [1],
+/// time_whole [0.]; `v = d["vals_nod_var"][0]` (old 3-D layout) in the
+/// order of name_nod_var `Temp VX VY VZ Pres AsH3 GaMe3 CH4 H2`; min/max
+/// per row, node 4242, and `sqrt(VX^2+VY^2+VZ^2)` for V.
+#[test]
+fn disk_out_ref_is_read_with_its_fields() {
+    let path = data("real/disk_out_ref.ex2");
+    let start = Instant::now();
+    let loaded = load(&path, &LoadOptions::default()).unwrap();
+    eprintln!(
+        "disk_out_ref.ex2: loaded in {:.3} s ({} tets)",
+        start.elapsed().as_secs_f64(),
+        loaded.mesh.tets.len()
+    );
+    let report = &loaded.report;
+    assert_eq!(report.format, "Exodus II");
+    assert_eq!(loaded.mesh.points.len(), 8499);
+    assert_eq!(report.cells_split, 7472, "every HEX8 is split");
+    assert_eq!(report.tets_from_split, loaded.mesh.tets.len());
+    assert!(loaded.mesh.tets.len() >= 5 * 7472);
+    assert_eq!(report.times, vec![0.0]);
+    assert_eq!(report.time_step, Some(0));
+    assert_eq!(
+        report.blocks,
+        vec![ElementBlock {
+            id: 1,
+            name: String::new(),
+            elem_type: "HEX8".into(),
+            nodes_per_element: 8,
+            cells: 7472,
+            kept: true,
+        }]
+    );
+    let mesh = &loaded.mesh;
+    for (name, lo, hi, at_4242) in [
+        (
+            "Temp",
+            293.1499938964844,
+            913.1500244140625,
+            310.7834777832031,
+        ),
+        (
+            "Pres",
+            0.006785521749407053,
+            0.028818512335419655,
+            0.017534418031573296,
+        ),
+        ("VZ", -21.1259765625, 6.7119011878967285, -6.063072681427002),
+        (
+            "AsH3",
+            0.08047682046890259,
+            0.18483947217464447,
+            0.14588281512260437,
+        ),
+        (
+            "GaMe3",
+            0.00022284436272457242,
+            0.007213925942778587,
+            0.0063100713305175304,
+        ),
+        ("CH4", 0.0, 0.0011702391784638166, 2.8323938749963418e-05),
+        (
+            "H2",
+            0.8076131343841553,
+            0.9176878929138184,
+            0.8477787971496582,
+        ),
+        ("V_magnitude", 0.0, 22.418820167105352, 6.249357854987234),
+    ] {
+        let values = field(mesh, name);
+        assert_eq!(values.len(), 8499, "{name}");
+        let (min, max) = range(values);
+        assert!(
+            close(min, lo) && close(max, hi),
+            "{name}: {min}..{max}, expected {lo}..{hi}"
+        );
+        assert!(
+            close(values[4242], at_4242),
+            "{name}[4242] = {}",
+            values[4242]
+        );
+    }
+    // Coordinates: node 4242 at (-3.00701642, 1.09446442, 8.33023739).
+    let p = mesh.points[4242];
+    assert!(close(p.x, -3.00701642) && close(p.y, 1.09446442) && close(p.z, 8.33023739));
+}
+
+/// A hex cube (block 10), two tets sharing a face away from it (block
+/// 20) and a shell on the cube's bottom (block 30, skipped); two time
+/// steps. Nodal: Temp = x + 10 step, VX = 1 + step, VY = 2, VZ = y.
+/// Element: "stress" on the hex only (truth table), "rho" everywhere.
+fn model() -> Model {
+    let coords = vec![
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, 0.0, 1.0],
+        [1.0, 0.0, 1.0],
+        [1.0, 1.0, 1.0],
+        [0.0, 1.0, 1.0],
+        [3.0, 0.0, 0.0],
+        [4.0, 0.0, 0.0],
+        [3.0, 1.0, 0.0],
+        [3.0, 0.0, 1.0],
+        [4.0, 1.0, 1.0],
+    ];
+    let times = vec![0.0, 0.5];
+    let per_node = |f: &dyn Fn(&[f64; 3], f64) -> f64| -> Vec<Vec<f64>> {
+        (0..2)
+            .map(|s| coords.iter().map(|p| f(p, s as f64)).collect())
+            .collect()
+    };
+    let nodal = vec![
+        ("Temp".to_string(), per_node(&|p, s| p[0] + 10.0 * s)),
+        ("VX".to_string(), per_node(&|_, s| 1.0 + s)),
+        ("VY".to_string(), per_node(&|_, _| 2.0)),
+        ("VZ".to_string(), per_node(&|p, _| p[1])),
+    ];
+    let elem = vec![
+        ElemVar {
+            name: "stress".into(),
+            per_step: (0..2)
+                .map(|s| vec![Some(vec![100.0 + s as f64]), None, None])
+                .collect(),
+        },
+        ElemVar {
+            name: "rho".into(),
+            per_step: (0..2)
+                .map(|s| {
+                    let s = s as f64;
+                    vec![
+                        Some(vec![1.0 + s]),
+                        Some(vec![2.0 + s, 4.0 + s]),
+                        Some(vec![9.0]),
+                    ]
+                })
+                .collect(),
+        },
+    ];
+    Model {
+        coords,
+        blocks: vec![
+            Block::new(10, "solid", "HEX8", 8, &[1, 2, 3, 4, 5, 6, 7, 8]),
+            Block::new(20, "tets", "tetra", 4, &[9, 10, 11, 12, 10, 11, 12, 13]),
+            Block::new(30, "skin", "SHELL4", 4, &[1, 2, 3, 4]),
+        ],
+        times,
+        nodal,
+        elem,
+        old_layout: false,
+        int64: false,
+    }
+}
+
+fn step(time_step: Option<usize>, time: Option<f64>) -> ExodusOptions {
+    ExodusOptions { time_step, time }
+}
+
+/// Checks a read of [`model`] at time step 1 against the values it was
+/// written with.
+fn check_step_1(bytes: &[u8], name: &str) {
+    let read = read_exodus_bytes(bytes, name, &step(Some(1), None)).unwrap();
+    assert_eq!(read.times, vec![0.0, 0.5], "{name}");
+    assert_eq!(read.time_step, Some(1));
+    assert_eq!(read.cells.hexahedra, 1);
+    assert_eq!(read.cells.tetra, 2);
+    let kept: Vec<(i64, &str, usize, bool)> = read
+        .blocks
+        .iter()
+        .map(|b| (b.id, b.name.as_str(), b.cells, b.kept))
+        .collect();
+    assert_eq!(
+        kept,
+        vec![
+            (10, "solid", 1, true),
+            (20, "tets", 2, true),
+            (30, "skin", 1, false)
+        ]
+    );
+    let skipped = read
+        .warnings
+        .iter()
+        .find(|w| w.contains("non-volume"))
+        .unwrap();
+    assert!(
+        skipped.contains("\"skin\" (id 30, SHELL4, 1 elements)"),
+        "{skipped}"
+    );
+    let mesh = &read.mesh;
+    assert_eq!(mesh.points.len(), 13);
+    assert_eq!(mesh.points[12], glam::Vec3::new(4.0, 1.0, 1.0));
+    let temp = field(mesh, "Temp");
+    for (p, t) in mesh.points.iter().zip(temp) {
+        assert_eq!(*t, p.x + 10.0);
+    }
+    // V = (2, 2, y): |V| = sqrt(8 + y^2); the components stay.
+    let v = field(mesh, "V_magnitude");
+    for (p, m) in mesh.points.iter().zip(v) {
+        assert!((m - (8.0 + p.y * p.y).sqrt()).abs() < 1e-6);
+    }
+    assert_eq!(field(mesh, "VX")[0], 2.0);
+    // stress: 101 on the hex's nodes, nothing (0) at the tets'.
+    let stress = field(mesh, "stress");
+    assert_eq!(&stress[..8], &[101.0; 8]);
+    assert_eq!(&stress[8..], &[0.0; 5]);
+    // rho: hex 2; tets 3 and 5; the shell's 9 plays no part.
+    let rho = field(mesh, "rho");
+    assert_eq!(&rho[..8], &[2.0; 8]);
+    assert_eq!(&rho[8..], &[3.0, 4.0, 4.0, 4.0, 5.0]);
+}
+
+#[test]
+fn round_trips_through_every_classic_version() {
+    for version in [Version::Cdf1, Version::Cdf2, Version::Cdf5] {
+        for old_layout in [false, true] {
+            let mut m = model();
+            m.old_layout = old_layout;
+            m.int64 = version == Version::Cdf5;
+            let name = format!("model-{version:?}-old{old_layout}.exo");
+            check_step_1(&m.write(version), &name);
+        }
+    }
+}
+
+#[test]
+fn time_is_chosen_by_step_or_nearest_time() {
+    let bytes = model().write(Version::Cdf1);
+    let at = |opts| read_exodus_bytes(&bytes, "t.exo", &opts);
+    let temp0 = |opts| field(&at(opts).unwrap().mesh, "Temp")[1];
+    assert_eq!(temp0(step(None, None)), 1.0, "step 0 by default");
+    assert_eq!(temp0(step(None, Some(0.4))), 11.0, "0.4 is nearest 0.5");
+    assert_eq!(temp0(step(None, Some(-7.0))), 1.0);
+    assert_eq!(at(step(None, Some(0.4))).unwrap().time_step, Some(1));
+    let e = at(step(Some(2), None)).unwrap_err();
+    assert!(matches!(
+        e,
+        ExodusError::TimeStepOutOfRange {
+            requested: 2,
+            count: 2,
+            ..
+        }
+    ));
+    let message = e.to_string();
+    assert!(
+        message.contains("t.exo") && message.contains("2 time step(s)"),
+        "{message}"
+    );
+    let e = at(step(Some(0), Some(0.0))).unwrap_err();
+    assert!(matches!(e, ExodusError::Time { .. }), "{e}");
+    let e = at(step(None, Some(f64::NAN))).unwrap_err();
+    assert!(matches!(e, ExodusError::Time { .. }), "{e}");
+}
+
+#[test]
+fn load_reads_a_file_by_its_name_and_reports_steps_and_blocks() {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("exodus_load");
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("model.E");
+    std::fs::write(&path, model().write(Version::Cdf2)).unwrap();
+    let opts = LoadOptions {
+        time: Some(0.5),
+        ..LoadOptions::default()
+    };
+    let loaded = load(&path, &opts).unwrap();
+    assert_eq!(loaded.report.format, "Exodus II");
+    assert_eq!(loaded.report.time_step, Some(1));
+    assert_eq!(loaded.report.times, vec![0.0, 0.5]);
+    assert_eq!(loaded.report.blocks.len(), 3);
+    assert_eq!(loaded.report.cells_split, 1);
+    assert!(loaded.report.validation.components == 2);
+    let opts = LoadOptions {
+        time_step: Some(5),
+        ..LoadOptions::default()
+    };
+    let e = load(&path, &opts).unwrap_err();
+    assert!(matches!(
+        e,
+        MeshError::Exodus(ExodusError::TimeStepOutOfRange { .. })
+    ));
+    assert!(e.to_string().contains("model.E"), "{e}");
+}
