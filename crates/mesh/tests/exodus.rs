@@ -323,3 +323,49 @@ fn load_reads_a_file_by_its_name_and_reports_steps_and_blocks() {
     ));
     assert!(e.to_string().contains("model.E"), "{e}");
 }
+
+/// `data/exodus/tet_wedge_netcdf4.exo`, written by Python netCDF4 with
+/// `data/exodus/make_netcdf4.py`; every expected number below is the
+/// value that script writes.
+#[test]
+fn netcdf4_file_from_an_independent_writer() {
+    let path = data("exodus/tet_wedge_netcdf4.exo");
+    let bytes = std::fs::read(&path).unwrap();
+    let read = read_exodus_bytes(&bytes, "tet_wedge_netcdf4.exo", &step(None, Some(3.0))).unwrap();
+    assert_eq!(read.times, vec![0.0, 1.0, 2.5]);
+    assert_eq!(read.time_step, Some(2), "3.0 is nearest 2.5");
+    assert_eq!(read.cells.tetra, 2);
+    assert_eq!(read.cells.wedges, 1);
+    let blocks: Vec<(i64, &str, &str, bool)> = read
+        .blocks
+        .iter()
+        .map(|b| (b.id, b.name.as_str(), b.elem_type.as_str(), b.kept))
+        .collect();
+    assert_eq!(
+        blocks,
+        vec![
+            (1, "tets", "TETRA", true),
+            (2, "wedges", "WEDGE", true),
+            (3, "rod", "BEAM", false)
+        ]
+    );
+    let mesh = &read.mesh;
+    assert_eq!(mesh.points.len(), 8);
+    for (p, v) in mesh.points.iter().zip(field(mesh, "pressure")) {
+        assert_eq!(*v, p.x + p.y + p.z + 2.0);
+    }
+    // vel = (3, 4, 2): |vel| = sqrt(29).
+    for v in field(mesh, "vel_magnitude") {
+        assert!((v - 29f32.sqrt()).abs() < 1e-6);
+    }
+    // heat: 9 at step 2 on the wedge's nodes 1-6; nodes 7, 8 (tets only) 0.
+    assert_eq!(
+        field(mesh, "heat"),
+        &[9.0, 9.0, 9.0, 9.0, 9.0, 9.0, 0.0, 0.0]
+    );
+    // The whole file through load: it validates as one piece.
+    let loaded = load(&path, &LoadOptions::default()).unwrap();
+    assert_eq!(loaded.report.time_step, Some(0));
+    assert_eq!(loaded.report.validation.components, 1);
+    assert_eq!(loaded.mesh.tets.len(), 2 + 3);
+}
