@@ -369,3 +369,206 @@ fn netcdf4_file_from_an_independent_writer() {
     assert_eq!(loaded.report.validation.components, 1);
     assert_eq!(loaded.mesh.tets.len(), 2 + 3);
 }
+
+/// One tetrahedron written by hand: `coordz` over a dimension of
+/// `coordz_len` values, the nodal variable over one of `values_len`, the
+/// given connectivity and element type.
+fn one_tet(coordz_len: usize, values_len: usize, connect: &[i32], elem_type: &str) -> Vec<u8> {
+    use exodus_common::{Cdf, Values};
+    let mut nc = Cdf::new(Version::Cdf1);
+    let time = nc.record_dim("time_step", 1);
+    nc.dim("num_dim", 3);
+    let nodes = nc.dim("num_nodes", 4);
+    let z_dim = if coordz_len == 4 {
+        nodes
+    } else {
+        nc.dim("other", coordz_len)
+    };
+    let v_dim = if values_len == 4 {
+        nodes
+    } else {
+        nc.dim("another", values_len)
+    };
+    nc.dim("num_el_blk", 1);
+    let elems = nc.dim("num_el_in_blk1", 1);
+    let per = nc.dim("num_nod_per_el1", connect.len());
+    let vars = nc.dim("num_nod_var", 1);
+    let len = nc.dim("len_name", 8);
+    nc.var("time_whole", &[time], Values::Doubles(vec![0.0]));
+    nc.var(
+        "coordx",
+        &[nodes],
+        Values::Doubles(vec![0.0, 1.0, 0.0, 0.0]),
+    );
+    nc.var(
+        "coordy",
+        &[nodes],
+        Values::Doubles(vec![0.0, 0.0, 1.0, 0.0]),
+    );
+    let z = (0..coordz_len)
+        .map(|i| f64::from(u8::from(i == 3)))
+        .collect();
+    nc.var("coordz", &[z_dim], Values::Doubles(z));
+    nc.var("connect1", &[elems, per], Values::Ints(connect.to_vec()))
+        .attr("elem_type", Values::Chars(elem_type.as_bytes().to_vec()));
+    nc.var(
+        "name_nod_var",
+        &[vars, len],
+        Values::Chars(b"T\0\0\0\0\0\0\0".to_vec()),
+    );
+    nc.var(
+        "vals_nod_var1",
+        &[time, v_dim],
+        Values::Doubles(vec![1.5; values_len]),
+    );
+    nc.to_bytes()
+}
+
+fn error_of(bytes: &[u8], name: &str) -> ExodusError {
+    let Err(e) = read_exodus_bytes(bytes, name, &ExodusOptions::default()) else {
+        panic!("{name}: read as a mesh");
+    };
+    assert!(
+        e.to_string().contains(name),
+        "the message names the file: {e}"
+    );
+    e
+}
+
+#[test]
+fn the_hand_written_tetrahedron_reads() {
+    // The base case of the malformed files below is itself valid.
+    let read = read_exodus_bytes(
+        &one_tet(4, 4, &[1, 2, 3, 4], "TET4"),
+        "ok.exo",
+        &ExodusOptions::default(),
+    )
+    .unwrap();
+    assert_eq!(read.mesh.tets.len(), 1);
+    assert_eq!(field(&read.mesh, "T"), &[1.5; 4]);
+}
+
+#[test]
+fn out_of_range_node_ids_are_errors_naming_block_and_element() {
+    for (bad, connect) in [(0, [1, 2, 0, 4]), (5, [1, 2, 3, 5]), (-3, [-3, 2, 3, 4])] {
+        let e = error_of(&one_tet(4, 4, &connect, "TETRA"), "ids.exo");
+        assert!(
+            matches!(e, ExodusError::BadNodeId { node_id, element: 1, num_nodes: 4, .. } if node_id == bad),
+            "{e}"
+        );
+        assert!(e.to_string().contains("node ids run from 1 to 4"), "{e}");
+    }
+}
+
+#[test]
+fn variables_of_the_wrong_length_are_errors() {
+    let e = error_of(&one_tet(3, 4, &[1, 2, 3, 4], "TETRA"), "z.exo");
+    assert!(
+        matches!(&e, ExodusError::WrongLength { variable, expected: 4, found: 3, .. } if variable == "coordz"),
+        "{e}"
+    );
+    let e = error_of(&one_tet(4, 5, &[1, 2, 3, 4], "TETRA"), "vals.exo");
+    assert!(
+        matches!(&e, ExodusError::WrongLength { variable, expected: 4, found: 5, .. } if variable == "vals_nod_var1"),
+        "{e}"
+    );
+}
+
+#[test]
+fn unsupported_volume_elements_are_errors() {
+    let e = error_of(
+        &one_tet(4, 4, &[1, 2, 3, 4, 1, 2, 3, 4, 1], "HEX9"),
+        "hex9.exo",
+    );
+    assert!(
+        matches!(&e, ExodusError::UnsupportedElement { nodes: 9, .. }),
+        "{e}"
+    );
+    let e = error_of(&one_tet(4, 4, &[1, 2, 3, 4], "blob"), "blob.exo");
+    assert!(e.to_string().contains("\"blob\""), "{e}");
+}
+
+#[test]
+fn a_file_without_volume_blocks_is_one_error_listing_them() {
+    let mut m = model();
+    m.blocks.truncate(0);
+    m.blocks
+        .push(Block::new(30, "skin", "SHELL4", 4, &[1, 2, 3, 4]));
+    m.blocks
+        .push(Block::new(31, "rods", "BAR2", 2, &[1, 2, 2, 3]));
+    m.elem.clear();
+    let e = error_of(&m.write(Version::Cdf1), "flat.exo");
+    assert!(matches!(e, ExodusError::NoVolumeBlock { .. }), "{e}");
+    let message = e.to_string();
+    assert!(
+        message.contains("\"skin\" (id 30, SHELL4, 1 elements)")
+            && message.contains("\"rods\" (id 31, BAR2, 2 elements)"),
+        "{message}"
+    );
+}
+
+#[test]
+fn missing_coordinates_are_an_error() {
+    let mut bytes = one_tet(4, 4, &[1, 2, 3, 4], "TETRA");
+    // Rename coordx/coordy/coordz (same length, so the file stays valid).
+    for name in [&b"coordx"[..], b"coordy", b"coordz"] {
+        let at = bytes.windows(6).position(|w| w == name).unwrap();
+        bytes[at..at + 5].copy_from_slice(b"COORD");
+    }
+    let e = error_of(&bytes, "nocoords.exo");
+    assert!(
+        matches!(&e, ExodusError::Missing { what, .. } if what.contains("coordinates")),
+        "{e}"
+    );
+}
+
+#[test]
+fn truncated_files_are_errors_never_panics() {
+    let bytes = model().write(Version::Cdf2);
+    for cut in 0..bytes.len() {
+        let name = format!("cut-at-{cut}.exo");
+        error_of(&bytes[..cut], &name);
+    }
+    let disk = std::fs::read(data("real/disk_out_ref.ex2")).unwrap();
+    // (The file's last 4 bytes lie past its data: cut inside the last
+    // variable, H2, which fills the 33,996 bytes before them.)
+    for cut in [4, 100, 1000, disk.len() / 2, disk.len() - 1000] {
+        let e = error_of(&disk[..cut], "disk_out_ref.ex2");
+        assert!(matches!(e, ExodusError::NetCdf { .. }), "{e}");
+    }
+}
+
+#[test]
+fn garbage_is_an_error_never_a_panic() {
+    let mut state = 0x2545_f491_4f6c_dd1du64;
+    let mut next = || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        state
+    };
+    let header = model().write(Version::Cdf1);
+    for trial in 0..200 {
+        let len = (next() % 4096) as usize;
+        let mut bytes: Vec<u8> = (0..len).map(|_| next() as u8).collect();
+        if trial % 2 == 0 {
+            error_of(&bytes, "noise.exo");
+            continue;
+        }
+        // A real start of a file, then noise: an error, or a mesh when the
+        // noise lies past what the header describes; never a panic.
+        let keep = (next() as usize % header.len()).min(len);
+        bytes[..keep].copy_from_slice(&header[..keep]);
+        if let Err(e) = read_exodus_bytes(&bytes, "noise.exo", &ExodusOptions::default()) {
+            assert!(e.to_string().contains("noise.exo"), "{e}");
+        }
+    }
+    // Flipped bytes inside a valid file: an error or a mesh, never a panic.
+    for i in 0..header.len() {
+        let mut bytes = header.clone();
+        bytes[i] ^= 0x5a;
+        if let Err(e) = read_exodus_bytes(&bytes, "flipped.exo", &ExodusOptions::default()) {
+            assert!(e.to_string().contains("flipped.exo"), "{e}");
+        }
+    }
+}
