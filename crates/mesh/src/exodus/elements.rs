@@ -179,4 +179,227 @@ mod tests {
         assert!(vtk_cell(Family::Hexahedron, 9).is_err());
         assert!(vtk_cell(Family::Polyhedron, 8).is_err());
     }
+
+    /// Exodus reference nodes: the corners, then each higher-order node
+    /// at the centre of the corners the Exodus/PATRAN numbering puts it on.
+    fn exodus_nodes(corners: &[[f64; 3]], centres: &[&[usize]]) -> Vec<[f64; 3]> {
+        let mut nodes = corners.to_vec();
+        nodes.extend(
+            centres
+                .iter()
+                .map(|on| centre(on.iter().map(|&c| corners[c]))),
+        );
+        nodes
+    }
+
+    fn centre(points: impl Iterator<Item = [f64; 3]>) -> [f64; 3] {
+        let (mut sum, mut n) = ([0.0; 3], 0.0);
+        for p in points {
+            (0..3).for_each(|a| sum[a] += p[a]);
+            n += 1.0;
+        }
+        sum.map(|s| s / n)
+    }
+
+    /// The nodes in VTK order, as the reader orders a block's connectivity.
+    fn in_vtk_order(f: Family, nodes: &[[f64; 3]]) -> Vec<[f64; 3]> {
+        let cell = vtk_cell(f, nodes.len()).unwrap();
+        let ids: Vec<i64> = (0..nodes.len() as i64).collect();
+        crate::exodus::read::vtk_order(&ids, cell)
+            .map(|i| nodes[i as usize])
+            .collect()
+    }
+
+    /// Checks VTK's higher-order nodes against the centres of the VTK
+    /// corners they belong on (vtkQuadraticTetra, vtkQuadraticHexahedron,
+    /// vtkTriQuadraticHexahedron, vtkQuadraticWedge, vtkQuadraticPyramid).
+    fn check_vtk_centres(vtk: &[[f64; 3]], first: usize, on: &[&[usize]], what: &str) {
+        for (k, corners) in on.iter().enumerate() {
+            let expected = centre(corners.iter().map(|&c| vtk[c]));
+            assert_eq!(vtk[first + k], expected, "{what}: VTK node {}", first + k);
+        }
+    }
+
+    /// (b - a) x (c - a) . (d - a): positive when d lies on the side the
+    /// right-hand normal of a-b-c points to.
+    fn side(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> f64 {
+        let (u, v, w) = (
+            [b[0] - a[0], b[1] - a[1], b[2] - a[2]],
+            [c[0] - a[0], c[1] - a[1], c[2] - a[2]],
+            [d[0] - a[0], d[1] - a[1], d[2] - a[2]],
+        );
+        let n = [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ];
+        n[0] * w[0] + n[1] * w[1] + n[2] * w[2]
+    }
+
+    const TET_EDGES: [&[usize]; 6] = [&[0, 1], &[1, 2], &[2, 0], &[0, 3], &[1, 3], &[2, 3]];
+    const CUBE: [[f64; 3]; 8] = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, 0.0, 1.0],
+        [1.0, 0.0, 1.0],
+        [1.0, 1.0, 1.0],
+        [0.0, 1.0, 1.0],
+    ];
+    /// Exodus HEX20 edges: bottom, vertical, top (nodes 9-20).
+    const EXODUS_HEX_EDGES: [&[usize]; 12] = [
+        &[0, 1],
+        &[1, 2],
+        &[2, 3],
+        &[3, 0],
+        &[0, 4],
+        &[1, 5],
+        &[2, 6],
+        &[3, 7],
+        &[4, 5],
+        &[5, 6],
+        &[6, 7],
+        &[7, 4],
+    ];
+    /// VTK quadratic hexahedron edges: bottom, top, vertical (8-19).
+    const VTK_HEX_EDGES: [&[usize]; 12] = [
+        &[0, 1],
+        &[1, 2],
+        &[2, 3],
+        &[3, 0],
+        &[4, 5],
+        &[5, 6],
+        &[6, 7],
+        &[7, 4],
+        &[0, 4],
+        &[1, 5],
+        &[2, 6],
+        &[3, 7],
+    ];
+
+    #[test]
+    fn quadratic_tetra_mid_edge_nodes_land_on_vtk_edges() {
+        let corners = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+        ];
+        let vtk = in_vtk_order(Family::Tetra, &exodus_nodes(&corners, &TET_EDGES));
+        check_vtk_centres(&vtk, 4, &TET_EDGES, "TETRA10");
+        assert!(
+            side(vtk[0], vtk[1], vtk[2], vtk[3]) > 0.0,
+            "VTK: 0-1-2 faces 3"
+        );
+    }
+
+    #[test]
+    fn quadratic_hexahedra_mid_edge_and_face_nodes_land_on_vtk_places() {
+        let vtk = in_vtk_order(Family::Hexahedron, &exodus_nodes(&CUBE, &EXODUS_HEX_EDGES));
+        check_vtk_centres(&vtk, 8, &VTK_HEX_EDGES, "HEX20");
+        assert!(
+            side(vtk[0], vtk[1], vtk[2], vtk[4]) > 0.0,
+            "VTK: 0-1-2-3 faces 4-5-6-7"
+        );
+
+        // HEX27: Exodus node 21 the centroid, 22-27 the centres of faces
+        // 5, 6, 4, 2, 1, 3 of the Exodus side numbering.
+        let mut exodus: Vec<&[usize]> = EXODUS_HEX_EDGES.to_vec();
+        exodus.extend([
+            &[0, 1, 2, 3, 4, 5, 6, 7][..],
+            &[0, 3, 2, 1],
+            &[4, 5, 6, 7],
+            &[0, 4, 7, 3],
+            &[1, 2, 6, 5],
+            &[0, 1, 5, 4],
+            &[2, 3, 7, 6],
+        ]);
+        let vtk = in_vtk_order(Family::Hexahedron, &exodus_nodes(&CUBE, &exodus));
+        check_vtk_centres(&vtk, 8, &VTK_HEX_EDGES, "HEX27 edges");
+        let vtk_faces: [&[usize]; 7] = [
+            &[0, 4, 7, 3],
+            &[1, 2, 6, 5],
+            &[0, 1, 5, 4],
+            &[3, 2, 6, 7],
+            &[0, 1, 2, 3],
+            &[4, 5, 6, 7],
+            &[0, 1, 2, 3, 4, 5, 6, 7],
+        ];
+        check_vtk_centres(&vtk, 20, &vtk_faces, "HEX27 faces and centre");
+    }
+
+    #[test]
+    fn wedges_turn_to_vtk_orientation_and_edges() {
+        // Exodus: 1-2-3 counter-clockwise seen from the top triangle 4-5-6.
+        let corners = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [1.0, 0.0, 1.0],
+            [0.0, 1.0, 1.0],
+        ];
+        assert!(side(corners[0], corners[1], corners[2], corners[3]) > 0.0);
+        let vtk = in_vtk_order(Family::Wedge, &corners);
+        assert!(
+            side(vtk[0], vtk[1], vtk[2], vtk[3]) < 0.0,
+            "VTK: 0-1-2 faces away from 3-4-5"
+        );
+        for k in 0..3 {
+            // Each VTK top corner still sits above its bottom corner.
+            assert_eq!([vtk[k][0], vtk[k][1]], [vtk[k + 3][0], vtk[k + 3][1]]);
+        }
+        let exodus: [&[usize]; 9] = [
+            &[0, 1],
+            &[1, 2],
+            &[2, 0],
+            &[0, 3],
+            &[1, 4],
+            &[2, 5],
+            &[3, 4],
+            &[4, 5],
+            &[5, 3],
+        ];
+        let vtk = in_vtk_order(Family::Wedge, &exodus_nodes(&corners, &exodus));
+        let vtk_edges: [&[usize]; 9] = [
+            &[0, 1],
+            &[1, 2],
+            &[2, 0],
+            &[3, 4],
+            &[4, 5],
+            &[5, 3],
+            &[0, 3],
+            &[1, 4],
+            &[2, 5],
+        ];
+        check_vtk_centres(&vtk, 6, &vtk_edges, "WEDGE15");
+    }
+
+    #[test]
+    fn quadratic_pyramid_mid_edge_nodes_land_on_vtk_edges() {
+        let corners = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.5, 0.5, 1.0],
+        ];
+        let edges: [&[usize]; 8] = [
+            &[0, 1],
+            &[1, 2],
+            &[2, 3],
+            &[3, 0],
+            &[0, 4],
+            &[1, 4],
+            &[2, 4],
+            &[3, 4],
+        ];
+        let vtk = in_vtk_order(Family::Pyramid, &exodus_nodes(&corners, &edges));
+        check_vtk_centres(&vtk, 5, &edges, "PYRAMID13");
+        assert!(
+            side(vtk[0], vtk[1], vtk[2], vtk[4]) > 0.0,
+            "VTK: the base faces the apex"
+        );
+    }
 }
