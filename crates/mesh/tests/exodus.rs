@@ -10,7 +10,7 @@ use std::time::Instant;
 use exodus_common::{Block, ElemVar, Model, Version};
 use tetray_mesh::{
     load, read_exodus_bytes, ElementBlock, ExodusError, ExodusOptions, LoadOptions, MeshError,
-    TetMesh,
+    MeshSummary, TetMesh,
 };
 
 fn data(path: &str) -> PathBuf {
@@ -312,6 +312,19 @@ fn load_reads_a_file_by_its_name_and_reports_steps_and_blocks() {
     assert_eq!(loaded.report.blocks.len(), 3);
     assert_eq!(loaded.report.cells_split, 1);
     assert!(loaded.report.validation.components == 2);
+    // What `tetray info` prints of them.
+    let text = MeshSummary::new(&loaded).to_string();
+    for line in [
+        "time steps:      2 (read step 1, time 0.5)",
+        "  id 10 \"solid\": 1 x HEX8 (8 nodes), kept",
+        "  id 20 \"tets\": 2 x tetra (4 nodes), kept",
+        "  id 30 \"skin\": 1 x SHELL4 (4 nodes), skipped",
+    ] {
+        assert!(
+            text.lines().any(|l| l == line),
+            "no line {line:?} in\n{text}"
+        );
+    }
     let opts = LoadOptions {
         time_step: Some(5),
         ..LoadOptions::default()
