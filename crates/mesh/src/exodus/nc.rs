@@ -103,13 +103,7 @@ impl<'a> Nc<'a> {
                 ),
             });
         }
-        let tail: u64 = shape[fixed.len()..].iter().product();
-        self.check_len(
-            name,
-            usize::try_from(tail).unwrap_or(usize::MAX),
-            expected,
-            what,
-        )?;
+        self.check_len(name, count(&shape[fixed.len()..]), expected, what)?;
         let mut selections: Vec<NcSliceInfoElem> = fixed
             .iter()
             .map(|&i| NcSliceInfoElem::Index(i as u64))
@@ -199,8 +193,22 @@ impl<'a> Nc<'a> {
 }
 
 fn var_len(var: &NcVariable) -> usize {
-    let n: u64 = var.shape().iter().product();
-    usize::try_from(n).unwrap_or(usize::MAX)
+    count(&var.shape())
+}
+
+/// Elements of a shape; `usize::MAX` for a count too large (a garbled
+/// header), which then fails the length check.
+fn count(shape: &[u64]) -> usize {
+    shape
+        .iter()
+        .try_fold(1u64, |n, &d| n.checked_mul(d))
+        .and_then(|n| usize::try_from(n).ok())
+        .unwrap_or(usize::MAX)
+}
+
+/// `a * b` of counts from the file, saturating (see [`count`]).
+pub(super) fn times(a: usize, b: usize) -> usize {
+    a.saturating_mul(b)
 }
 
 /// Exodus names are fixed-length char arrays padded with NUL or spaces.

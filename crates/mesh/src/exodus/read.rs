@@ -3,7 +3,7 @@
 //! the variables of one time step (see `vars.rs`).
 
 use super::elements::{family, vtk_cell, Family, VtkCell};
-use super::nc::Nc;
+use super::nc::{times, Nc};
 use super::vars::{choose_step, element_variables, nodal_variables, read_times};
 use super::{ElementBlock, ExodusError, ExodusOptions};
 use crate::vtk::RawGrid;
@@ -110,7 +110,7 @@ fn coordinates(nc: &Nc, num_nodes: usize) -> Result<Vec<f64>, ExodusError> {
             .map(|v| nc.read_f64(v, num_nodes, "one per node"))
             .collect::<Result<_, _>>()?
     } else if nc.var("coord").is_some() {
-        let all = nc.read_f64("coord", num_dim * num_nodes, "num_dim x num_nodes")?;
+        let all = nc.read_f64("coord", times(num_dim, num_nodes), "num_dim x num_nodes")?;
         all.chunks_exact(num_nodes.max(1))
             .map(<[f64]>::to_vec)
             .collect()
@@ -179,7 +179,11 @@ fn element_blocks(
             nodes,
             why,
         })?;
-        let ids = nc.read_ints(&connect, cells * nodes, "elements x nodes per element")?;
+        let ids = nc.read_ints(
+            &connect,
+            times(cells, nodes),
+            "elements x nodes per element",
+        )?;
         let first_cell = grid.types.len();
         append_cells(&ids, nodes, cell, num_nodes, grid).map_err(|(element, node_id)| {
             ExodusError::BadNodeId {

@@ -3,7 +3,7 @@
 //! a block has none), and x/y/z component triples also one 3-component
 //! array.
 
-use super::nc::Nc;
+use super::nc::{times, Nc};
 use super::read::KeptBlock;
 use super::{ExodusError, ExodusOptions};
 use crate::vtk::RawArray;
@@ -138,7 +138,7 @@ pub(super) fn element_variables(
     let table = match nc.var("elem_var_tab") {
         Some(_) => Some(nc.read_ints(
             "elem_var_tab",
-            num_blocks * count,
+            times(num_blocks, count),
             "blocks x element variables",
         )?),
         None => None,
