@@ -233,3 +233,135 @@ fn append_cells(
 pub(super) fn vtk_order(element: &[i64], cell: VtkCell) -> impl Iterator<Item = i64> + '_ {
     cell.exodus_node_of_vtk.iter().map(move |&k| element[k])
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A TETRA10 and a HEX20 block as a file stores them (1-based ids in
+    /// Exodus node order, the nodes numbered in a scrambled order) become
+    /// VTK cells 24 and 25 whose mid-edge points sit at the midpoints of
+    /// VTK's edges (vtkQuadraticTetra: 4-9 on 0-1, 1-2, 2-0, 0-3, 1-3, 2-3;
+    /// vtkQuadraticHexahedron: 8-11 bottom, 12-15 top, 16-19 vertical).
+    #[test]
+    fn quadratic_blocks_become_vtk_cells_with_edges_in_vtk_places() {
+        let tet_corners = [
+            [0.0, 0.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [0.0, 2.0, 0.0],
+            [0.0, 0.0, 2.0],
+        ];
+        let tet_exodus_edges = [[0, 1], [1, 2], [2, 0], [0, 3], [1, 3], [2, 3]];
+        let hex_corners = [
+            [0.0, 0.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [2.0, 2.0, 0.0],
+            [0.0, 2.0, 0.0],
+            [0.0, 0.0, 2.0],
+            [2.0, 0.0, 2.0],
+            [2.0, 2.0, 2.0],
+            [0.0, 2.0, 2.0],
+        ];
+        // Exodus HEX20 nodes 9-20: bottom edges, vertical edges, top edges.
+        let hex_exodus_edges = [
+            [0, 1],
+            [1, 2],
+            [2, 3],
+            [3, 0],
+            [0, 4],
+            [1, 5],
+            [2, 6],
+            [3, 7],
+            [4, 5],
+            [5, 6],
+            [6, 7],
+            [7, 4],
+        ];
+        let mid = |a: [f64; 3], b: [f64; 3]| {
+            [
+                0.5 * (a[0] + b[0]),
+                0.5 * (a[1] + b[1]),
+                0.5 * (a[2] + b[2]),
+            ]
+        };
+        // Node coordinates, element by element in Exodus order.
+        let mut exodus_points: Vec<[f64; 3]> = tet_corners.to_vec();
+        exodus_points.extend(
+            tet_exodus_edges
+                .iter()
+                .map(|&[a, b]| mid(tet_corners[a], tet_corners[b])),
+        );
+        exodus_points.extend(hex_corners);
+        exodus_points.extend(
+            hex_exodus_edges
+                .iter()
+                .map(|&[a, b]| mid(hex_corners[a], hex_corners[b])),
+        );
+        // Store node k (0-based, in that order) as file node 1 + (7k mod 30).
+        let n = exodus_points.len();
+        let file_id = |k: usize| (7 * k % n) as i64 + 1;
+        let mut coords = vec![[0.0; 3]; n];
+        for (k, p) in exodus_points.iter().enumerate() {
+            coords[file_id(k) as usize - 1] = *p;
+        }
+        let tet_ids: Vec<i64> = (0..10).map(file_id).collect();
+        let hex_ids: Vec<i64> = (10..30).map(file_id).collect();
+
+        let mut grid = RawGrid {
+            offsets: vec![0],
+            ..RawGrid::default()
+        };
+        let tet = vtk_cell(Family::Tetra, 10).unwrap();
+        let hex = vtk_cell(Family::Hexahedron, 20).unwrap();
+        append_cells(&tet_ids, 10, tet, n, &mut grid).unwrap();
+        append_cells(&hex_ids, 20, hex, n, &mut grid).unwrap();
+        assert_eq!(grid.types, vec![24, 25]);
+        assert_eq!(grid.offsets, vec![0, 10, 30]);
+
+        let point = |c: usize, i: usize| coords[grid.connectivity[grid.offsets[c] + i] as usize];
+        let vtk_tet_edges = [[0, 1], [1, 2], [2, 0], [0, 3], [1, 3], [2, 3]];
+        for (k, &[a, b]) in vtk_tet_edges.iter().enumerate() {
+            assert_eq!(
+                point(0, 4 + k),
+                mid(point(0, a), point(0, b)),
+                "tet node {}",
+                4 + k
+            );
+        }
+        let vtk_hex_edges = [
+            [0, 1],
+            [1, 2],
+            [2, 3],
+            [3, 0],
+            [4, 5],
+            [5, 6],
+            [6, 7],
+            [7, 4],
+            [0, 4],
+            [1, 5],
+            [2, 6],
+            [3, 7],
+        ];
+        for (k, &[a, b]) in vtk_hex_edges.iter().enumerate() {
+            assert_eq!(
+                point(1, 8 + k),
+                mid(point(1, a), point(1, b)),
+                "hex node {}",
+                8 + k
+            );
+        }
+        for (c, corners) in [(0, &tet_corners[..]), (1, &hex_corners[..])] {
+            for (i, &p) in corners.iter().enumerate() {
+                assert_eq!(point(c, i), p, "cell {c} corner {i}");
+            }
+        }
+
+        // Node ids 0 and n + 1: the element and the id, 1-based.
+        let mut bad = tet_ids.clone();
+        bad[3] = 0;
+        assert_eq!(append_cells(&bad, 10, tet, n, &mut grid), Err((1, 0)));
+        let mut bad = [tet_ids.clone(), tet_ids].concat();
+        bad[15] = n as i64 + 1;
+        assert_eq!(append_cells(&bad, 10, tet, n, &mut grid), Err((2, 31)));
+    }
+}
