@@ -265,4 +265,40 @@ mod tests {
         assert_eq!(x("Temp"), None);
         assert_eq!(x(""), None);
     }
+
+    fn array(name: &str, values: &[f64], defined: Option<Vec<bool>>) -> RawArray {
+        RawArray {
+            name: name.into(),
+            components: 1,
+            values: values.to_vec(),
+            section: String::new(),
+            defined,
+        }
+    }
+
+    #[test]
+    fn triples_become_vectors_with_the_common_mask() {
+        let arrays = vec![
+            array("s_x", &[1.0, 2.0], Some(vec![true, true])),
+            array("s_y", &[3.0, 4.0], Some(vec![true, false])),
+            array("s_z", &[5.0, 6.0], None),
+            array("VX", &[1.0, 1.0], None),
+            array("VY", &[1.0, 1.0], None),
+            array("T", &[0.0, 0.0], None),
+        ];
+        let mut warnings = Vec::new();
+        let joined = vectors(&arrays, &mut warnings);
+        assert_eq!(joined.len(), 1, "VX, VY without VZ is no vector");
+        assert_eq!(joined[0].name, "s");
+        assert_eq!(joined[0].components, 3);
+        assert_eq!(joined[0].values, vec![1.0, 3.0, 5.0, 2.0, 4.0, 6.0]);
+        assert_eq!(joined[0].defined, Some(vec![true, false]));
+        assert!(warnings.is_empty());
+
+        // A variable already named like the vector keeps its name alone.
+        let mut taken = arrays.clone();
+        taken.push(array("s", &[0.0, 0.0], None));
+        assert!(vectors(&taken, &mut warnings).is_empty());
+        assert!(warnings[0].contains("\"s\" exists"), "{warnings:?}");
+    }
 }
