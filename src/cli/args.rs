@@ -13,13 +13,20 @@ use tetray_project::SortKind;
 /// Which mesh to load. No path means the embedded Blunt Fin dataset.
 #[derive(Debug, Clone, Default, Args)]
 pub struct MeshArgs {
-    /// Mesh file: .vtk, .vtu, or a PLOT3D grid (*xyz.bin, *.xyz, *.x).
+    /// Mesh file: .vtk, .vtu, Exodus II (.e, .exo, .ex2, .g, .gen), or a
+    /// PLOT3D grid (*xyz.bin, *.xyz, *.x).
     /// Default: the embedded Blunt Fin (PLOT3D, NASA).
     pub mesh: Option<PathBuf>,
     /// PLOT3D solution (q) file. Default: the grid's name with "xyz"
     /// replaced by "q" (postxyz.bin -> postq.bin), when it exists.
     #[arg(long, value_name = "FILE")]
     pub q: Option<PathBuf>,
+    /// Exodus II: the time step to read, counted from 0 (default: 0).
+    #[arg(long, value_name = "N", conflicts_with = "time")]
+    pub time_step: Option<usize>,
+    /// Exodus II: read the time step whose stored time is nearest T.
+    #[arg(long, value_name = "T", value_parser = parse_time, allow_hyphen_values = true)]
+    pub time: Option<f64>,
 }
 
 /// VTK/ParaView camera. Whatever is not given comes from a
@@ -304,6 +311,14 @@ pub fn parse_finite(text: &str) -> Result<f32, String> {
     match parse_floats(text)?.as_slice() {
         [v] => Ok(*v),
         _ => Err(format!("expected one number, got {text:?}")),
+    }
+}
+
+/// A finite simulation time.
+pub fn parse_time(text: &str) -> Result<f64, String> {
+    match text.trim().parse::<f64>() {
+        Ok(t) if t.is_finite() => Ok(t),
+        _ => Err(format!("expected a finite number, got {text:?}")),
     }
 }
 

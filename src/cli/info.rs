@@ -78,8 +78,24 @@ struct InfoJson<'a> {
     load_seconds: f64,
     valid: bool,
     warnings: &'a [String],
+    /// Exodus II: the stored times, one per time step (empty otherwise).
+    times: &'a [f64],
+    /// Exodus II: the time step read (0-based).
+    time_step: Option<usize>,
+    /// Exodus II: the element blocks, kept (volume) or skipped.
+    blocks: Vec<BlockJson<'a>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     adapter: Option<AdapterJson>,
+}
+
+#[derive(Debug, Serialize)]
+struct BlockJson<'a> {
+    id: i64,
+    name: &'a str,
+    elem_type: &'a str,
+    nodes_per_element: usize,
+    cells: usize,
+    kept: bool,
 }
 
 #[derive(Debug, Serialize)]
@@ -140,6 +156,20 @@ pub fn run(args: &InfoArgs) -> anyhow::Result<()> {
             load_seconds: input.load_time.as_secs_f64(),
             valid: true,
             warnings: &summary.warnings,
+            times: &summary.times,
+            time_step: summary.time_step,
+            blocks: summary
+                .blocks
+                .iter()
+                .map(|b| BlockJson {
+                    id: b.id,
+                    name: &b.name,
+                    elem_type: &b.elem_type,
+                    nodes_per_element: b.nodes_per_element,
+                    cells: b.cells,
+                    kept: b.kept,
+                })
+                .collect(),
             adapter,
         };
         println!("{}", serde_json::to_string_pretty(&json)?);

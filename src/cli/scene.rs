@@ -70,6 +70,9 @@ pub fn load_mesh(args: &MeshArgs) -> anyhow::Result<MeshInput> {
             if args.q.is_some() {
                 bail!("--q needs a PLOT3D grid file (the embedded dataset has its own)");
             }
+            if args.time_step.is_some() || args.time.is_some() {
+                bail!("--time-step and --time need an Exodus II file");
+            }
             let loaded =
                 tetray_mesh::load_plot3d_bytes(BLUNT_FIN_XYZ, Some(BLUNT_FIN_Q), EMBEDDED_NAME)?;
             (EMBEDDED_NAME.to_string(), loaded)
@@ -83,8 +86,18 @@ pub fn load_mesh(args: &MeshArgs) -> anyhow::Result<MeshInput> {
             }
             let options = tetray_mesh::LoadOptions {
                 plot3d_q: args.q.clone(),
+                time_step: args.time_step,
+                time: args.time,
             };
             let loaded = tetray_mesh::load(path, &options)?;
+            let timed = args.time_step.is_some() || args.time.is_some();
+            if timed && loaded.report.format != "Exodus II" {
+                bail!(
+                    "{}: --time-step and --time apply to Exodus II files, this is {}",
+                    path.display(),
+                    loaded.report.format
+                );
+            }
             (path.display().to_string(), loaded)
         }
     };

@@ -1,5 +1,6 @@
 //! The error type of the mesh crate.
 
+use crate::exodus::ExodusError;
 use crate::vtk::VtkError;
 
 /// Everything that makes a mesh unusable. Each variant names what is at
@@ -18,10 +19,14 @@ pub enum MeshError {
     #[error(transparent)]
     Vtk(#[from] VtkError),
 
+    /// The Exodus II reader failed.
+    #[error(transparent)]
+    Exodus(#[from] ExodusError),
+
     /// The file name does not say which reader to use.
     #[error(
-        "{file}: unknown mesh format: expected .vtk, .vtu, or a PLOT3D grid \
-         (name ending in xyz.bin, .xyz or .x)"
+        "{file}: unknown mesh format: expected .vtk, .vtu, an Exodus II file (.e, .exo, \
+         .ex2, .g, .gen) or a PLOT3D grid (name ending in xyz.bin, .xyz or .x)"
     )]
     UnknownFormat { file: String },
 
@@ -197,6 +202,7 @@ impl MeshError {
         match self {
             MeshError::Io { .. }
             | MeshError::Vtk(_)
+            | MeshError::Exodus(_)
             | MeshError::UnknownFormat { .. }
             | MeshError::Plot3dHeader { .. }
             | MeshError::Plot3dTruncated { .. }

@@ -4,7 +4,7 @@ use std::fmt;
 
 use glam::Vec3;
 
-use crate::LoadedMesh;
+use crate::{ElementBlock, LoadedMesh};
 
 /// Range of one scalar field.
 #[derive(Debug, Clone, PartialEq)]
@@ -31,6 +31,12 @@ pub struct MeshSummary {
     pub cells_split: usize,
     pub tets_from_split: usize,
     pub warnings: Vec<String>,
+    /// The stored times (Exodus II), one per time step.
+    pub times: Vec<f64>,
+    /// The time step read.
+    pub time_step: Option<usize>,
+    /// The file's element blocks (Exodus II).
+    pub blocks: Vec<ElementBlock>,
 }
 
 impl MeshSummary {
@@ -72,6 +78,9 @@ impl MeshSummary {
             cells_split: report.cells_split,
             tets_from_split: report.tets_from_split,
             warnings: report.warnings.clone(),
+            times: report.times.clone(),
+            time_step: report.time_step,
+            blocks: report.blocks.clone(),
         }
     }
 }
@@ -96,6 +105,32 @@ impl fmt::Display for MeshSummary {
                 "split:           {} cells into {} tetrahedra",
                 self.cells_split, self.tets_from_split
             )?;
+        }
+        if let Some(step) = self.time_step {
+            writeln!(
+                f,
+                "time steps:      {} (read step {step}, time {})",
+                self.times.len(),
+                self.times[step]
+            )?;
+        } else if !self.blocks.is_empty() {
+            writeln!(f, "time steps:      none")?;
+        }
+        if !self.blocks.is_empty() {
+            writeln!(f, "element blocks:")?;
+            for b in &self.blocks {
+                let name = if b.name.is_empty() {
+                    String::new()
+                } else {
+                    format!(" \"{}\"", b.name)
+                };
+                let what = if b.kept { "kept" } else { "skipped" };
+                writeln!(
+                    f,
+                    "  id {}{name}: {} x {} ({} nodes), {what}",
+                    b.id, b.cells, b.elem_type, b.nodes_per_element
+                )?;
+            }
         }
         writeln!(f, "reoriented:      {}", self.inverted_fixed)?;
         writeln!(f, "flat dropped:    {}", self.degenerate_dropped)?;

@@ -1,5 +1,5 @@
 //! Tetrahedral meshes for volume rendering: points, tetrahedra, point scalar
-//! fields; readers for VTK legacy, VTK XML (.vtu) and PLOT3D; the
+//! fields; readers for VTK legacy, VTK XML (.vtu), PLOT3D and Exodus II; the
 //! face-neighbour graph and boundary faces; validation; large generated
 //! test meshes ([`generate`]).
 //!
@@ -25,11 +25,15 @@ mod seams;
 mod topology;
 mod validate;
 
+pub mod exodus;
 pub mod generate;
 pub mod plot3d;
 pub mod structured;
 
 pub use error::MeshError;
+pub use exodus::{
+    read_exodus_bytes, read_exodus_file, ElementBlock, ExodusError, ExodusOptions, ExodusRead,
+};
 pub use geometry::{tet_shape, TetShape, DEGENERATE_HEIGHT_ULPS};
 pub use info::{FieldRange, MeshSummary};
 pub use load::{

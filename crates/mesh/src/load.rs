@@ -3,22 +3,29 @@
 
 use std::path::{Path, PathBuf};
 
+use crate::exodus::{read_exodus_file, ElementBlock, ExodusOptions, ExodusRead};
 use crate::plot3d::{read_plot3d_bytes, read_plot3d_files, Plot3dRead};
 use crate::{validate_with_topology, vtk, MeshError, TetMesh, Topology, ValidationReport};
 
 /// Options of [`load`].
-#[derive(Debug, Clone, Default, PartialEq, Eq)]
+#[derive(Debug, Clone, Default, PartialEq)]
 pub struct LoadOptions {
     /// The PLOT3D solution file; by default the grid file's sibling with
     /// `xyz` replaced by `q` (`postxyz.bin` -> `postq.bin`, `a.xyz` or
     /// `a.x` -> `a.q`), used when it exists.
     pub plot3d_q: Option<PathBuf>,
+    /// Exodus II: the 0-based time step to read (default: the first).
+    pub time_step: Option<usize>,
+    /// Exodus II: read the time step whose stored time is nearest this
+    /// (not together with `time_step`).
+    pub time: Option<f64>,
 }
 
 /// What happened on the way from the file to the mesh.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct LoadReport {
-    /// The reader used: "VTK legacy", "VTK XML", "PLOT3D" or "memory".
+    /// The reader used: "VTK legacy", "VTK XML", "PLOT3D", "Exodus II" or
+    /// "memory".
     pub format: &'static str,
     /// Reader and validation warnings, as sentences.
     pub warnings: Vec<String>,
@@ -34,6 +41,13 @@ pub struct LoadReport {
     pub tets_from_split: usize,
     /// Validation findings (components, duplicate points, seams...).
     pub validation: ValidationReport,
+    /// The times the file stores, one per time step (Exodus II; empty for
+    /// the other formats).
+    pub times: Vec<f64>,
+    /// The time step read (0-based), when the file stores any.
+    pub time_step: Option<usize>,
+    /// The file's element blocks, kept or skipped (Exodus II).
+    pub blocks: Vec<ElementBlock>,
 }
 
 /// A mesh ready to render: positively oriented, validated, with its
@@ -51,6 +65,7 @@ enum Format {
     Legacy,
     Vtu,
     Plot3d,
+    Exodus,
 }
 
 fn format_of(path: &Path) -> Option<Format> {
@@ -59,6 +74,11 @@ fn format_of(path: &Path) -> Option<Format> {
         Some(Format::Legacy)
     } else if name.ends_with(".vtu") {
         Some(Format::Vtu)
+    } else if [".e", ".exo", ".ex2", ".g", ".gen"]
+        .iter()
+        .any(|ext| name.ends_with(ext))
+    {
+        Some(Format::Exodus)
     } else if name.ends_with("xyz.bin") || name.ends_with(".xyz") || name.ends_with(".x") {
         Some(Format::Plot3d)
     } else {
@@ -81,8 +101,9 @@ pub fn plot3d_q_sibling(xyz: &Path) -> Option<PathBuf> {
     Some(xyz.with_file_name(q_name))
 }
 
-/// Reads the mesh at `path` (chosen by name: `.vtk`, `.vtu`, or a PLOT3D
-/// grid `*xyz.bin`, `*.xyz`, `*.x`), then orients, validates and builds the
+/// Reads the mesh at `path` (chosen by name, any case: `.vtk`, `.vtu`, an
+/// Exodus II file `.e`, `.exo`, `.ex2`, `.g`, `.gen`, or a PLOT3D grid
+/// `*xyz.bin`, `*.xyz`, `*.x`), then orients, validates and builds the
 /// topology (see [`prepare`]).
 ///
 /// # Errors
@@ -94,6 +115,13 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<LoadedMesh, MeshError> {
     let read = match format {
         Format::Legacy => from_vtk(vtk::read_legacy_file(path)?, "VTK legacy"),
         Format::Vtu => from_vtk(vtk::read_vtu_file(path)?, "VTK XML"),
+        Format::Exodus => {
+            let exodus = ExodusOptions {
+                time_step: opts.time_step,
+                time: opts.time,
+            };
+            from_exodus(read_exodus_file(path, &exodus)?)
+        }
         Format::Plot3d => {
             let mut warnings = Vec::new();
             let q = match &opts.plot3d_q {
@@ -155,6 +183,9 @@ struct Read {
     inverted_fixed: usize,
     cells_split: usize,
     tets_from_split: usize,
+    times: Vec<f64>,
+    time_step: Option<usize>,
+    blocks: Vec<ElementBlock>,
 }
 
 fn from_vtk(read: vtk::VtkRead, format: &'static str) -> Read {
@@ -169,6 +200,21 @@ fn from_vtk(read: vtk::VtkRead, format: &'static str) -> Read {
     }
 }
 
+fn from_exodus(read: ExodusRead) -> Read {
+    let c = read.cells;
+    Read {
+        mesh: read.mesh,
+        format: "Exodus II",
+        warnings: read.warnings,
+        cells_split: c.hexahedra + c.wedges + c.pyramids + c.voxels,
+        tets_from_split: c.tets_from_split,
+        times: read.times,
+        time_step: read.time_step,
+        blocks: read.blocks,
+        ..Read::default()
+    }
+}
+
 fn from_plot3d(read: Plot3dRead) -> Read {
     let hexahedra = read.hexahedra - read.blanked_hexahedra;
     Read {
@@ -179,6 +225,7 @@ fn from_plot3d(read: Plot3dRead) -> Read {
         degenerate_dropped: read.degenerate_dropped,
         inverted_fixed: read.reoriented,
         cells_split: hexahedra,
+        ..Read::default()
     }
 }
 
@@ -198,6 +245,9 @@ fn finish(mut read: Read) -> Result<LoadedMesh, MeshError> {
             cells_split: read.cells_split,
             tets_from_split: read.tets_from_split,
             validation,
+            times: read.times,
+            time_step: read.time_step,
+            blocks: read.blocks,
         },
     })
 }
@@ -214,6 +264,10 @@ mod tests {
         assert_eq!(format_of(p("postxyz.bin")), Some(Format::Plot3d));
         assert_eq!(format_of(p("grid.x")), Some(Format::Plot3d));
         assert_eq!(format_of(p("grid.obj")), None);
+        for name in ["a.e", "a.EXO", "disk_out_ref.ex2", "mesh.g", "mesh.Gen"] {
+            assert_eq!(format_of(p(name)), Some(Format::Exodus), "{name}");
+        }
+        assert_eq!(format_of(p("a.e-s")), None);
         assert_eq!(
             plot3d_q_sibling(p("d/postxyz.bin")),
             Some(PathBuf::from("d/postq.bin"))

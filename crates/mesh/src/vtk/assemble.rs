@@ -18,6 +18,11 @@ pub(crate) struct RawArray {
     pub values: Vec<f64>,
     /// Where it came from, for messages ("line 12, POINT_DATA SCALARS \"p\"").
     pub section: String,
+    /// Which tuples hold a value (`None`: all). Cell arrays only: a cell
+    /// without one adds nothing to the average at its points (an Exodus
+    /// element variable that some blocks lack); its `values` entries are
+    /// ignored but must be finite.
+    pub defined: Option<Vec<bool>>,
 }
 
 /// An unstructured grid as both formats describe it.
@@ -131,14 +136,26 @@ pub(crate) fn assemble(mut grid: RawGrid, file: &str) -> Result<VtkRead, VtkErro
         let users = cells.point_users(&volume_cell, npoints);
         for array in &grid.cell_arrays {
             let (mut name, cell_values) = per_tuple(array, cells.len(), file)?;
-            let averaged = cells.average_to_points(&cell_values, &volume_cell, &users);
+            let averaged = match &array.defined {
+                None => cells.average_to_points(&cell_values, &volume_cell, &users),
+                Some(defined) => {
+                    let used = mask_cells(&volume_cell, defined, &array.section, file)?;
+                    let users = cells.point_users(&used, npoints);
+                    cells.average_to_points(&cell_values, &used, &users)
+                }
+            };
             let renamed = fields.iter().any(|f| f.name == name);
             if renamed {
                 name.push_str("_cell");
             }
             warnings.push(format!(
                 "cell field \"{name}\" converted to point data by averaging over the volume cells \
-                 using each point (0 at points in no volume cell){}",
+                 using each point{} (0 at points in no such cell){}",
+                if array.defined.is_some() {
+                    " that have a value"
+                } else {
+                    ""
+                },
                 if renamed {
                     "; renamed: a point field has its name"
                 } else {
@@ -161,6 +178,29 @@ pub(crate) fn assemble(mut grid: RawGrid, file: &str) -> Result<VtkRead, VtkErro
         warnings,
         cells: counts,
     })
+}
+
+/// The volume cells that also have a value of a masked cell array.
+fn mask_cells(
+    volume_cell: &[bool],
+    defined: &[bool],
+    section: &str,
+    file: &str,
+) -> Result<Vec<bool>, VtkError> {
+    if defined.len() != volume_cell.len() {
+        return Err(VtkError::CountMismatch {
+            file: file.into(),
+            section: section.into(),
+            what: "cells with a value or not".into(),
+            expected: volume_cell.len(),
+            found: defined.len(),
+        });
+    }
+    Ok(volume_cell
+        .iter()
+        .zip(defined)
+        .map(|(&v, &d)| v && d)
+        .collect())
 }
 
 fn finite_points(xyz: &[f64], section: &str, file: &str) -> Result<Vec<Vec3>, VtkError> {

@@ -424,6 +424,7 @@ impl Parser<'_> {
             components,
             values,
             section,
+            defined: None,
         };
         match self.mode {
             Attributes::Point => self.grid.point_arrays.push(array),

@@ -35,6 +35,8 @@ mod vtu_xml;
 
 use std::path::Path;
 
+pub(crate) use assemble::{assemble, RawArray, RawGrid};
+
 pub use error::VtkError;
 pub use legacy_write::write_legacy;
 pub use vtu_stream::{write_vtu_streamed, TetChunks, VtuIndex, VtuStreamOptions};

@@ -248,6 +248,7 @@ fn read_arrays(
             components: a.components,
             values,
             section,
+            defined: None,
         });
     }
     Ok(out)
