@@ -13,12 +13,18 @@ pub struct LoadOptions {
     /// `xyz` replaced by `q` (`postxyz.bin` -> `postq.bin`, `a.xyz` or
     /// `a.x` -> `a.q`), used when it exists.
     pub plot3d_q: Option<PathBuf>,
+    /// For a multi-block `.vtm`: keep only the block of this name (or
+    /// path `outer/inner`, by the blocks' `name` attributes).
+    pub block: Option<String>,
 }
 
 /// What happened on the way from the file to the mesh.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct LoadReport {
-    /// The reader used: "VTK legacy", "VTK XML", "PLOT3D" or "memory".
+    /// The reader used: "VTK legacy", "VTK legacy STRUCTURED_GRID" (and
+    /// RECTILINEAR_GRID, STRUCTURED_POINTS), "VTK XML" (`.vtu`), "VTK XML
+    /// StructuredGrid" (and RectilinearGrid, ImageData), "VTK parallel
+    /// XML", "VTK multi-block", "PLOT3D" or "memory".
     pub format: &'static str,
     /// Reader and validation warnings, as sentences.
     pub warnings: Vec<String>,
@@ -32,6 +38,10 @@ pub struct LoadReport {
     pub cells_split: usize,
     /// Tetrahedra made by those splits.
     pub tets_from_split: usize,
+    /// Pieces joined, points welded, ghost and blanked cells dropped, blocks
+    /// read and skipped (parallel and multi-block files; ghost and blanked
+    /// cells of any VTK file).
+    pub pieces: vtk::PieceCounts,
     /// Validation findings (components, duplicate points, seams...).
     pub validation: ValidationReport,
 }
@@ -49,16 +59,25 @@ pub struct LoadedMesh {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Format {
     Legacy,
-    Vtu,
+    /// Serial XML: `.vtu`, `.vts`, `.vtr`, `.vti`.
+    Xml,
+    /// `.pvtu`, `.pvts`, `.pvtr`, `.pvti`.
+    Parallel,
+    MultiBlock,
     Plot3d,
 }
 
 fn format_of(path: &Path) -> Option<Format> {
     let name = path.file_name()?.to_string_lossy().to_lowercase();
-    if name.ends_with(".vtk") {
+    let ext = name.rsplit_once('.').map_or("", |(_, e)| e);
+    if ext == "vtk" {
         Some(Format::Legacy)
-    } else if name.ends_with(".vtu") {
-        Some(Format::Vtu)
+    } else if ["vtu", "vts", "vtr", "vti"].contains(&ext) {
+        Some(Format::Xml)
+    } else if ["pvtu", "pvts", "pvtr", "pvti"].contains(&ext) {
+        Some(Format::Parallel)
+    } else if ext == "vtm" {
+        Some(Format::MultiBlock)
     } else if name.ends_with("xyz.bin") || name.ends_with(".xyz") || name.ends_with(".x") {
         Some(Format::Plot3d)
     } else {
@@ -81,9 +100,11 @@ pub fn plot3d_q_sibling(xyz: &Path) -> Option<PathBuf> {
     Some(xyz.with_file_name(q_name))
 }
 
-/// Reads the mesh at `path` (chosen by name: `.vtk`, `.vtu`, or a PLOT3D
-/// grid `*xyz.bin`, `*.xyz`, `*.x`), then orients, validates and builds the
-/// topology (see [`prepare`]).
+/// Reads the mesh at `path` (chosen by name: `.vtk` (any dataset type its
+/// DATASET line names), `.vtu`, `.vts`, `.vtr`, `.vti`, their parallel
+/// forms `.pvt*`, multi-block `.vtm`, or a PLOT3D grid `*xyz.bin`,
+/// `*.xyz`, `*.x`), then orients, validates and builds the topology (see
+/// [`prepare`]).
 ///
 /// # Errors
 /// [`MeshError::UnknownFormat`] for an unrecognised name, the reader's
@@ -92,8 +113,31 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<LoadedMesh, MeshError> {
     let file = path.display().to_string();
     let format = format_of(path).ok_or_else(|| MeshError::UnknownFormat { file: file.clone() })?;
     let read = match format {
-        Format::Legacy => from_vtk(vtk::read_legacy_file(path)?, "VTK legacy"),
-        Format::Vtu => from_vtk(vtk::read_vtu_file(path)?, "VTK XML"),
+        Format::Legacy => {
+            let read = vtk::read_legacy_file(path)?;
+            let format = match read.dataset {
+                "StructuredGrid" => "VTK legacy STRUCTURED_GRID",
+                "RectilinearGrid" => "VTK legacy RECTILINEAR_GRID",
+                "ImageData" => "VTK legacy STRUCTURED_POINTS",
+                _ => "VTK legacy",
+            };
+            from_vtk(read, format)
+        }
+        Format::Xml => {
+            let read = vtk::read_vtu_file(path)?;
+            let format = match read.dataset {
+                "StructuredGrid" => "VTK XML StructuredGrid",
+                "RectilinearGrid" => "VTK XML RectilinearGrid",
+                "ImageData" => "VTK XML ImageData",
+                _ => "VTK XML",
+            };
+            from_vtk(read, format)
+        }
+        Format::Parallel => from_vtk(vtk::read_parallel_file(path)?, "VTK parallel XML"),
+        Format::MultiBlock => from_vtk(
+            vtk::read_multiblock_file(path, opts.block.as_deref())?,
+            "VTK multi-block",
+        ),
         Format::Plot3d => {
             let mut warnings = Vec::new();
             let q = match &opts.plot3d_q {
@@ -155,6 +199,7 @@ struct Read {
     inverted_fixed: usize,
     cells_split: usize,
     tets_from_split: usize,
+    pieces: vtk::PieceCounts,
 }
 
 fn from_vtk(read: vtk::VtkRead, format: &'static str) -> Read {
@@ -165,6 +210,7 @@ fn from_vtk(read: vtk::VtkRead, format: &'static str) -> Read {
         warnings: read.warnings,
         cells_split: c.hexahedra + c.wedges + c.pyramids + c.voxels,
         tets_from_split: c.tets_from_split,
+        pieces: read.pieces,
         ..Read::default()
     }
 }
@@ -179,6 +225,7 @@ fn from_plot3d(read: Plot3dRead) -> Read {
         degenerate_dropped: read.degenerate_dropped,
         inverted_fixed: read.reoriented,
         cells_split: hexahedra,
+        pieces: vtk::PieceCounts::default(),
     }
 }
 
@@ -197,6 +244,7 @@ fn finish(mut read: Read) -> Result<LoadedMesh, MeshError> {
             degenerate_dropped: read.degenerate_dropped,
             cells_split: read.cells_split,
             tets_from_split: read.tets_from_split,
+            pieces: read.pieces,
             validation,
         },
     })
@@ -210,7 +258,10 @@ mod tests {
     fn formats_and_q_siblings() {
         let p = Path::new;
         assert_eq!(format_of(p("a/b.VTK")), Some(Format::Legacy));
-        assert_eq!(format_of(p("b.vtu")), Some(Format::Vtu));
+        assert_eq!(format_of(p("b.vtu")), Some(Format::Xml));
+        assert_eq!(format_of(p("b.VTI")), Some(Format::Xml));
+        assert_eq!(format_of(p("d/b.pvtu")), Some(Format::Parallel));
+        assert_eq!(format_of(p("b.vtm")), Some(Format::MultiBlock));
         assert_eq!(format_of(p("postxyz.bin")), Some(Format::Plot3d));
         assert_eq!(format_of(p("grid.x")), Some(Format::Plot3d));
         assert_eq!(format_of(p("grid.obj")), None);
