@@ -176,11 +176,18 @@ fn parallel_raw(path: &Path) -> Result<RawGrid, VtkError> {
     Ok(grid)
 }
 
-/// A serial XML file's raw grid with its ghost cells dropped.
+/// A serial XML file's raw grid with its ghost cells dropped; the places
+/// its messages name start with the file, as several files are joined.
 fn serial_raw(path: &Path) -> Result<RawGrid, VtkError> {
     let name = path.display().to_string();
     let mut grid = vtu_read::read_raw(&read_path(path)?, &name)?;
     drop_ghosts(&mut grid, &name)?;
+    for array in grid.point_arrays.iter_mut().chain(&mut grid.cell_arrays) {
+        array.section = format!("{name}, {}", array.section);
+    }
+    for warning in &mut grid.warnings {
+        *warning = format!("{name}: {warning}");
+    }
     Ok(grid)
 }
 
@@ -287,7 +294,11 @@ fn multiblock_raw(path: &Path, block: Option<&str>) -> Result<RawGrid, VtkError>
         let found = describe_cells(&surface);
         return Err(VtkError::NoVolumeCells {
             file: name,
-            found: format!("{found} in {} block files", leaves.len()),
+            found: format!(
+                "{found} in {} block file{}",
+                leaves.len(),
+                if leaves.len() == 1 { "" } else { "s" }
+            ),
         });
     }
     let (read_count, skipped) = (grids.len(), notes.len());
@@ -311,7 +322,7 @@ fn read_leaf(file: &Path, leaf: &Leaf, vtm: &str) -> Result<LeafGrid, VtkError> 
     if !file.is_file() {
         return Err(VtkError::MissingFile {
             file: vtm.into(),
-            what: format!("block \"{}\"", leaf.path.join("/")),
+            what: format!("block \"{}\": file", leaf.path.join("/")),
             source_name: leaf.file.clone(),
             path: file.display().to_string(),
         });
@@ -332,10 +343,7 @@ fn read_leaf(file: &Path, leaf: &Leaf, vtm: &str) -> Result<LeafGrid, VtkError> 
         return Ok(LeafGrid::Volume(grid));
     }
     let cells = cells.unwrap_or_default();
-    Ok(LeafGrid::Skipped(
-        format!("no volume cell ({})", describe_cells(&cells)),
-        cells,
-    ))
+    Ok(LeafGrid::Skipped(describe_cells(&cells), cells))
 }
 
 /// `None` when the grid has a 3-D cell; else its cells by type.
