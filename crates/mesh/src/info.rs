@@ -4,6 +4,7 @@ use std::fmt;
 
 use glam::Vec3;
 
+use crate::vtk::PieceCounts;
 use crate::LoadedMesh;
 
 /// Range of one scalar field.
@@ -30,6 +31,8 @@ pub struct MeshSummary {
     pub degenerate_dropped: usize,
     pub cells_split: usize,
     pub tets_from_split: usize,
+    /// Pieces joined, points welded, ghost and blanked cells dropped.
+    pub pieces: PieceCounts,
     pub warnings: Vec<String>,
 }
 
@@ -71,6 +74,7 @@ impl MeshSummary {
             degenerate_dropped: report.degenerate_dropped,
             cells_split: report.cells_split,
             tets_from_split: report.tets_from_split,
+            pieces: report.pieces,
             warnings: report.warnings.clone(),
         }
     }
@@ -95,6 +99,28 @@ impl fmt::Display for MeshSummary {
                 f,
                 "split:           {} cells into {} tetrahedra",
                 self.cells_split, self.tets_from_split
+            )?;
+        }
+        let p = &self.pieces;
+        if p.pieces > 0 {
+            writeln!(
+                f,
+                "pieces:          {} joined, {} points welded, {} ghost cells dropped",
+                p.pieces, p.welded_points, p.ghost_cells_dropped
+            )?;
+        }
+        if p.blocks > 0 {
+            writeln!(
+                f,
+                "blocks:          {} read, {} skipped",
+                p.blocks, p.blocks_skipped
+            )?;
+        }
+        if p.hidden_cells_dropped > 0 || (p.pieces == 0 && p.ghost_cells_dropped > 0) {
+            writeln!(
+                f,
+                "blanked:         {} hidden and {} ghost cells dropped",
+                p.hidden_cells_dropped, p.ghost_cells_dropped
             )?;
         }
         writeln!(f, "reoriented:      {}", self.inverted_fixed)?;

@@ -432,4 +432,11 @@ fn garbled_parallel_and_multiblock_files_are_named_errors() {
         assert!(e.starts_with(&path.display().to_string()), "{e}");
         assert!(e.contains(want), "{name}: {e}");
     }
+    // A .vtm naming itself: an error, not a stack overflow.
+    let path = dir.write(
+        "self.vtm",
+        b"<VTKFile type=\"vtkMultiBlockDataSet\"><vtkMultiBlockDataSet><DataSet index=\"0\" file=\"self.vtm\"/></vtkMultiBlockDataSet></VTKFile>",
+    );
+    let e = read_multiblock_file(&path, None).unwrap_err().to_string();
+    assert!(e.contains("nested more than 16 deep"), "{e}");
 }

@@ -33,7 +33,7 @@ pub(crate) fn read_parallel(path: &Path) -> Result<VtkRead, VtkError> {
 
 pub(crate) fn read_multiblock(path: &Path, block: Option<&str>) -> Result<VtkRead, VtkError> {
     let name = path.display().to_string();
-    let grid = multiblock_raw(path, block)?;
+    let grid = multiblock_raw(path, block, 0)?;
     ready(grid, &name)
 }
 
@@ -235,8 +235,20 @@ enum LeafGrid {
     Skipped(String, Vec<(i64, usize)>),
 }
 
-fn multiblock_raw(path: &Path, block: Option<&str>) -> Result<RawGrid, VtkError> {
+/// `.vtm` files may name `.vtm` files; deeper than this is taken for a loop.
+const MAX_NESTING: usize = 16;
+
+fn multiblock_raw(path: &Path, block: Option<&str>, depth: usize) -> Result<RawGrid, VtkError> {
     let name = path.display().to_string();
+    if depth > MAX_NESTING {
+        return Err(VtkError::Invalid {
+            file: name,
+            section: "<DataSet file>".into(),
+            message: format!(
+                "multi-block files nested more than {MAX_NESTING} deep (a file naming itself?)"
+            ),
+        });
+    }
     let root = xml_tree(&read_path(path)?, &name)?;
     let Some(top) = root
         .children
@@ -266,7 +278,7 @@ fn multiblock_raw(path: &Path, block: Option<&str>) -> Result<RawGrid, VtkError>
     let folder = folder_of(path);
     let read = leaves
         .par_iter()
-        .map(|leaf| read_leaf(&folder.join(&leaf.file), leaf, &name))
+        .map(|leaf| read_leaf(&folder.join(&leaf.file), leaf, &name, depth))
         .collect::<Result<Vec<_>, _>>()?;
     let mut grids = Vec::new();
     let mut notes = Vec::new();
@@ -310,7 +322,7 @@ fn multiblock_raw(path: &Path, block: Option<&str>) -> Result<RawGrid, VtkError>
     Ok(grid)
 }
 
-fn read_leaf(file: &Path, leaf: &Leaf, vtm: &str) -> Result<LeafGrid, VtkError> {
+fn read_leaf(file: &Path, leaf: &Leaf, vtm: &str, depth: usize) -> Result<LeafGrid, VtkError> {
     let lower = leaf.file.to_ascii_lowercase();
     let ext = lower.rsplit('.').next().unwrap_or("");
     if ext == "vtp" {
@@ -330,7 +342,7 @@ fn read_leaf(file: &Path, leaf: &Leaf, vtm: &str) -> Result<LeafGrid, VtkError> 
     let grid = match ext {
         "vtu" | "vts" | "vtr" | "vti" => serial_raw(file)?,
         "pvtu" | "pvts" | "pvtr" | "pvti" => parallel_raw(file)?,
-        "vtm" => multiblock_raw(file, None)?,
+        "vtm" => multiblock_raw(file, None, depth + 1)?,
         _ => {
             return Ok(LeafGrid::Skipped(
                 format!("format .{ext} is not read in multi-block files"),
