@@ -229,7 +229,7 @@ fn matches_block(leaf: &Leaf, block: &str) -> bool {
 
 /// What a leaf turned out to hold.
 enum LeafGrid {
-    Volume(RawGrid),
+    Volume(Box<RawGrid>),
     /// Polygonal data, another format, or only lower-dimensional cells:
     /// a note, and the cells by type.
     Skipped(String, Vec<(i64, usize)>),
@@ -285,7 +285,7 @@ fn multiblock_raw(path: &Path, block: Option<&str>, depth: usize) -> Result<RawG
     let mut surface: Vec<(i64, usize)> = Vec::new();
     for (leaf, grid) in leaves.iter().zip(read) {
         match grid {
-            LeafGrid::Volume(g) => grids.push(g),
+            LeafGrid::Volume(g) => grids.push(*g),
             LeafGrid::Skipped(note, cells) => {
                 notes.push(format!(
                     "block \"{}\" ({}): {note}",
@@ -352,7 +352,7 @@ fn read_leaf(file: &Path, leaf: &Leaf, vtm: &str, depth: usize) -> Result<LeafGr
     };
     let cells = lower_dim_cells(&grid);
     if cells.is_none() {
-        return Ok(LeafGrid::Volume(grid));
+        return Ok(LeafGrid::Volume(Box::new(grid)));
     }
     let cells = cells.unwrap_or_default();
     Ok(LeafGrid::Skipped(describe_cells(&cells), cells))
