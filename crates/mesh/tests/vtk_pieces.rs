@@ -111,12 +111,21 @@ fn blood_vessel_pieces_join_into_one_component() {
     assert_eq!(point_set(&one.mesh), distinct);
 }
 
+/// How the pieces give point ids: the id array's name, whether
+/// `<PointData GlobalIds>` marks it, and how far piece 1 moves its copy of
+/// the shared plane (so that only ids can weld it).
+type Ids = (&'static str, bool, f64);
+const MARKED: Ids = ("gid", true, 1e-6);
+/// VTK's Exodus reader's name: ids even unmarked.
+const NAMED: Ids = ("GlobalNodeId", false, 1e-6);
+/// A plain field: pieces weld by coordinates.
+const PLAIN: Ids = ("node", false, 0.0);
+
 /// A 5 x 3 x 3 point block (16 hexahedra) cut at x = 2 into two pieces,
 /// each with one layer of ghost cells (vtkGhostType 1) from the other and
-/// the points they need. With `ids`, GlobalNodeId marks global point ids
-/// and piece 1 moves its copy of the shared plane by 1e-6 (so only the ids
-/// can weld it).
-fn write_two_pieces(dir: &TempDir, ids: bool) -> (std::path::PathBuf, Vec<f64>) {
+/// the points they need, with point ids as `ids` says.
+fn write_two_pieces(dir: &TempDir, ids: Ids) -> (std::path::PathBuf, Vec<f64>) {
+    let (id_name, marked, shift) = ids;
     let whole = warped_points([0, 4, 0, 2, 0, 2]);
     let piece = |x0: usize, x1: usize, owned: std::ops::Range<usize>, shift: f64| {
         // Points x0..=x1 of the block, cells between them.
@@ -146,23 +155,22 @@ fn write_two_pieces(dir: &TempDir, ids: bool) -> (std::path::PathBuf, Vec<f64>) 
             cell_ids.push((i + 4 * (c / (nx - 1))) as f64);
         }
         let point_data = vec![
-            array("GlobalNodeId", "Int64", 1, gids.clone()),
+            array(id_name, "Int64", 1, gids.clone()),
             array("f", "Float64", 1, gids.iter().map(|g| 0.25 * g).collect()),
         ];
         let cell_data = vec![
             array("vtkGhostType", "UInt8", 1, ghosts),
             array("cell", "Float64", 1, cell_ids),
         ];
-        let attrs = if ids {
-            "GlobalIds=\"GlobalNodeId\""
+        let attrs = if marked {
+            format!("GlobalIds=\"{id_name}\"")
         } else {
-            ""
+            String::new()
         };
         let types = vec![12; cells.len()];
-        let p = unstructured_piece(&points, &cells, &types, point_data, cell_data, attrs);
+        let p = unstructured_piece(&points, &cells, &types, point_data, cell_data, &attrs);
         xml_file("UnstructuredGrid", "", &[p], Enc::Base64)
     };
-    let shift = if ids { 1e-6 } else { 0.0 };
     dir.write("parts/p0.vtu", &piece(0, 3, 0..2, 0.0));
     dir.write("parts/p1.vtu", &piece(1, 4, 2..4, shift));
     let pvtu = "<?xml version=\"1.0\"?>\n<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\">\n\
@@ -174,25 +182,25 @@ fn write_two_pieces(dir: &TempDir, ids: bool) -> (std::path::PathBuf, Vec<f64>) 
 
 #[test]
 fn ghost_cells_drop_and_pieces_weld_like_one_file() {
-    for ids in [true, false] {
-        let dir = TempDir::new(&format!("pvtu-{ids}"));
+    for ids in [MARKED, NAMED, PLAIN] {
+        let dir = TempDir::new(&format!("pvtu-{}", ids.0));
         let (path, whole) = write_two_pieces(&dir, ids);
         let loaded = load(&path, &LoadOptions::default()).unwrap();
         let p = loaded.report.pieces;
         // 4 ghost cells (one layer of 1 x 2 x 2) in each piece.
-        assert_eq!(p.ghost_cells_dropped, 8, "ids {ids}");
+        assert_eq!(p.ghost_cells_dropped, 8, "ids {ids:?}");
         // The 3 x 3 points of the plane x = 2; the ghost-only planes go.
-        assert_eq!(p.welded_points, 9, "ids {ids}");
-        assert_eq!(loaded.mesh.points.len(), 45, "ids {ids}");
-        assert_eq!(loaded.report.cells_split, 16, "ids {ids}");
-        assert_eq!(loaded.report.validation.components, 1, "ids {ids}");
+        assert_eq!(p.welded_points, 9, "ids {ids:?}");
+        assert_eq!(loaded.mesh.points.len(), 45, "ids {ids:?}");
+        assert_eq!(loaded.report.cells_split, 16, "ids {ids:?}");
+        assert_eq!(loaded.report.validation.components, 1, "ids {ids:?}");
         let names: Vec<&str> = loaded.mesh.fields.iter().map(|f| f.name.as_str()).collect();
-        let want_names: &[&str] = if ids {
-            &["f", "cell"]
+        let want_names: &[&str] = if ids == PLAIN {
+            &["node", "f", "cell"]
         } else {
-            &["GlobalNodeId", "f", "cell"]
+            &["f", "cell"]
         };
-        assert_eq!(names, want_names, "ids {ids}");
+        assert_eq!(names, want_names, "ids {ids:?}");
 
         // The same 16 hexahedra as one .vtu, numbered as the block: the
         // welded points keep that order, so the splits agree.
@@ -213,8 +221,8 @@ fn ghost_cells_drop_and_pieces_weld_like_one_file() {
         let one = read_vtu_bytes(&bytes, "one.vtu").unwrap();
         let mut oriented = one.mesh.clone();
         oriented.orient();
-        assert_eq!(point_set(&loaded.mesh), point_set(&one.mesh), "ids {ids}");
-        assert_eq!(tet_set(&loaded.mesh), tet_set(&oriented), "ids {ids}");
+        assert_eq!(point_set(&loaded.mesh), point_set(&one.mesh), "ids {ids:?}");
+        assert_eq!(tet_set(&loaded.mesh), tet_set(&oriented), "ids {ids:?}");
         let f = |m: &TetMesh| -> HashMap<Key, u32> {
             let field = &m.fields.iter().find(|f| f.name == "f").unwrap().values;
             m.points
@@ -223,7 +231,7 @@ fn ghost_cells_drop_and_pieces_weld_like_one_file() {
                 .map(|(&p, v)| (key(p), v.to_bits()))
                 .collect()
         };
-        assert_eq!(f(&loaded.mesh), f(&one.mesh), "ids {ids}");
+        assert_eq!(f(&loaded.mesh), f(&one.mesh), "ids {ids:?}");
     }
 }
 
@@ -372,7 +380,7 @@ fn nested_blocks_merge_and_one_can_be_chosen() {
 #[test]
 fn missing_pieces_and_blocks_name_the_file_and_the_piece() {
     let dir = TempDir::new("missing");
-    let (path, _) = write_two_pieces(&dir, true);
+    let (path, _) = write_two_pieces(&dir, MARKED);
     std::fs::remove_file(dir.path().join("parts/p1.vtu")).unwrap();
     let e = read_parallel_file(&path).unwrap_err();
     assert!(matches!(e, VtkError::MissingFile { .. }), "{e}");
@@ -402,7 +410,7 @@ fn missing_pieces_and_blocks_name_the_file_and_the_piece() {
     );
 
     // A broken piece: its own error, naming the piece file.
-    let (path, _) = write_two_pieces(&dir, false);
+    let (path, _) = write_two_pieces(&dir, PLAIN);
     std::fs::write(
         dir.path().join("parts/p0.vtu"),
         b"<VTKFile type=\"UnstructuredGrid\"><Unstr",

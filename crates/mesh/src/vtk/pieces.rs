@@ -10,7 +10,8 @@
 //!
 //! Welding: a point of a later piece becomes the point of an earlier piece
 //! with the same global id (the point array `<PointData GlobalIds>` names,
-//! when every piece has one) or else with bit-equal coordinates. Points of
+//! else one named `GlobalNodeId`, when every piece has one) or else with
+//! bit-equal coordinates. Points of
 //! one piece are never merged with each other: a piece's own duplicates are
 //! the validation's business.
 
@@ -32,11 +33,24 @@ pub(crate) fn finish_grid(mut grid: RawGrid, file: &str) -> Result<RawGrid, VtkE
     Ok(grid)
 }
 
+/// The name Exodus files converted by VTK (IOSS) give global point ids.
+const GLOBAL_NODE_ID: &str = "GlobalNodeId";
+
+/// The point array of global ids: the one the file marks, else one named
+/// `GlobalNodeId`.
+fn global_id_array(grid: &RawGrid) -> Option<&RawArray> {
+    let name = grid.global_ids.as_deref().unwrap_or(GLOBAL_NODE_ID);
+    grid.point_arrays
+        .iter()
+        .find(|a| a.name == name && a.components == 1)
+}
+
 /// Removes the point array holding global ids: ids are not a physical field.
 pub(crate) fn drop_global_ids(grid: &mut RawGrid) {
-    if let Some(name) = grid.global_ids.take() {
+    if let Some(name) = global_id_array(grid).map(|a| a.name.clone()) {
         grid.point_arrays.retain(|a| a.name != name);
     }
+    grid.global_ids = None;
 }
 
 /// One flag byte per tuple of a `vtkGhostType` array, removed from `arrays`.
@@ -194,13 +208,10 @@ enum WeldKey {
 /// grids' ghost cells must already be dropped. Arrays missing from some
 /// piece are dropped with a warning (like the Pieces of one `.vtu`).
 pub(crate) fn weld(grids: Vec<RawGrid>, file: &str) -> Result<RawGrid, VtkError> {
-    let by_id = grids.iter().filter(|g| !g.points.is_empty()).all(|g| {
-        g.global_ids.as_ref().is_some_and(|name| {
-            g.point_arrays
-                .iter()
-                .any(|a| &a.name == name && a.components == 1)
-        })
-    });
+    let by_id = grids
+        .iter()
+        .filter(|g| !g.points.is_empty())
+        .all(|g| global_id_array(g).is_some());
     let mut out = RawGrid {
         points_section: "Points".into(),
         dataset: common_dataset(&grids),
@@ -216,11 +227,9 @@ pub(crate) fn weld(grids: Vec<RawGrid>, file: &str) -> Result<RawGrid, VtkError>
         out.pieces.hidden_cells_dropped += grid.pieces.hidden_cells_dropped;
         out.pieces.welded_points += grid.pieces.welded_points;
         out.warnings.append(&mut grid.warnings);
-        let ids = grid
-            .global_ids
-            .as_ref()
-            .and_then(|name| grid.point_arrays.iter().find(|a| &a.name == name))
-            .map(|a| a.values.clone());
+        let id_array = global_id_array(&grid);
+        let id_name = id_array.map(|a| a.name.clone());
+        let ids = id_array.map(|a| a.values.clone());
         let npoints = grid.points.len() / 3;
         let base = out.points.len() / 3;
         let mut fresh: Vec<(WeldKey, u32)> = Vec::new();
@@ -280,7 +289,7 @@ pub(crate) fn weld(grids: Vec<RawGrid>, file: &str) -> Result<RawGrid, VtkError>
             cell_arrays.push(grid.cell_arrays);
         }
         if out.global_ids.is_none() && by_id {
-            out.global_ids = grid.global_ids;
+            out.global_ids = id_name;
         }
     }
     out.point_arrays = super::vtu_read::merge(point_arrays, &mut out.warnings);
