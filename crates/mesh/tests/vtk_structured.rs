@@ -415,3 +415,33 @@ fn flat_grids_are_one_no_volume_error() {
         "line.vtk holds only lower-dimensional cells (4 lines): nothing to volume-render"
     );
 }
+
+#[test]
+fn left_handed_grids_load_reoriented_with_their_format_names() {
+    let dir = TempDir::new("left-handed");
+    let piece = Piece {
+        attrs: extent_attr([0, 2, 0, 2, 0, 2]),
+        sections: vec![],
+    };
+    // A negative z spacing makes the i, j, k axes left-handed: every
+    // hexahedron, and so every tetrahedron of its split, is inverted.
+    let vti = xml_file(
+        "ImageData",
+        "WholeExtent=\"0 2 0 2 0 2\" Spacing=\"1 1 -1\"",
+        &[piece],
+        Enc::Base64,
+    );
+    let loaded = load(&dir.write("left.vti", &vti), &LoadOptions::default()).unwrap();
+    assert_eq!(loaded.report.format, "VTK XML ImageData");
+    assert_eq!(loaded.report.cells_split, 8);
+    assert_eq!(loaded.report.inverted_fixed, loaded.mesh.tets.len());
+    assert_eq!(loaded.report.validation.components, 1);
+
+    let rect = legacy(
+        "RECTILINEAR_GRID",
+        "DIMENSIONS 2 2 2\nX_COORDINATES 2 float\n0 1\nY_COORDINATES 2 float\n0 1\nZ_COORDINATES 2 float\n0 -1\n",
+    );
+    let loaded = load(&dir.write("rect.vtk", &rect), &LoadOptions::default()).unwrap();
+    assert_eq!(loaded.report.format, "VTK legacy RECTILINEAR_GRID");
+    assert_eq!(loaded.report.inverted_fixed, loaded.mesh.tets.len());
+}

@@ -124,7 +124,8 @@ fn read_path(path: &Path) -> Result<Vec<u8>, VtkError> {
     })
 }
 
-/// Reads a legacy `.vtk` file (UNSTRUCTURED_GRID, ASCII or BINARY).
+/// Reads a legacy `.vtk` file (UNSTRUCTURED_GRID, STRUCTURED_GRID,
+/// RECTILINEAR_GRID or STRUCTURED_POINTS; ASCII or BINARY).
 pub fn read_legacy_file(path: &Path) -> Result<VtkRead, VtkError> {
     read_legacy_bytes(&read_path(path)?, &path.display().to_string())
 }
