@@ -50,8 +50,17 @@ impl MeshInput {
         } else {
             String::new()
         };
+        let p = &report.pieces;
+        let pieces = if p.pieces > 0 {
+            format!(
+                " from {} pieces ({} points welded, {} ghost cells dropped)",
+                p.pieces, p.welded_points, p.ghost_cells_dropped
+            )
+        } else {
+            String::new()
+        };
         format!(
-            "loaded {} ({}): {} points, {} tetrahedra{split}, {} boundary faces, {} component{} in {:.3} s",
+            "loaded {} ({}{pieces}): {} points, {} tetrahedra{split}, {} boundary faces, {} component{} in {:.3} s",
             self.name,
             report.format,
             mesh.points.len(),
