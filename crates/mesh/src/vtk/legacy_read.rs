@@ -89,8 +89,10 @@ pub(crate) fn read(bytes: &[u8], name: &str) -> Result<VtkRead, VtkError> {
         }
         p.section(&keyword, line)?;
     }
-    if let Some(s) = p.structured.take() {
-        s.finish(&mut p.grid, name)?;
+    // The declared counts are checked before the grid's points and cells
+    // are made from the dimensions.
+    let structured = p.structured.take();
+    if let Some(s) = &structured {
         let (npoints, ncells) = s.counts(name)?;
         let line = 1;
         p.points = Some(Declared {
@@ -104,6 +106,9 @@ pub(crate) fn read(bytes: &[u8], name: &str) -> Result<VtkRead, VtkError> {
         p.cell_types = p.cells;
     }
     p.finish()?;
+    if let Some(s) = &structured {
+        s.finish(&mut p.grid, name)?;
+    }
     let grid = finish_grid(p.grid, name)?;
     if grid.dataset != "UnstructuredGrid" {
         super::collection::require_volume(&grid, name, "")?;

@@ -63,6 +63,10 @@ pub(crate) fn read_raw(doc: &mut VtuDoc<'_>, file: &str) -> Result<RawGrid, VtkE
             dataset,
             ..RawGrid::default()
         };
+        // Arrays first: their lengths check the extent before the points
+        // and cells it implies are made.
+        let points = read_arrays(&decoder, piece, k, false, &mut grid.warnings)?;
+        let cells = read_arrays(&decoder, piece, k, true, &mut grid.warnings)?;
         match (dataset, &image) {
             ("StructuredGrid", _) => read_points(&decoder, piece, k, &mut grid)?,
             ("RectilinearGrid", _) => grid.points = coordinates(&decoder, piece, k, dims)?,
@@ -72,8 +76,6 @@ pub(crate) fn read_raw(doc: &mut VtuDoc<'_>, file: &str) -> Result<RawGrid, VtkE
             _ => {}
         }
         add_cells(dims, &mut grid);
-        let points = read_arrays(&decoder, piece, k, false, &mut grid.warnings)?;
-        let cells = read_arrays(&decoder, piece, k, true, &mut grid.warnings)?;
         grid.point_arrays = merge(vec![points], &mut grid.warnings);
         grid.cell_arrays = merge(vec![cells], &mut grid.warnings);
         grid.global_ids = common_global_ids(std::slice::from_ref(piece));
