@@ -13,9 +13,11 @@ use tetray_project::SortKind;
 /// Which mesh to load. No path means the embedded Blunt Fin dataset.
 #[derive(Debug, Clone, Default, Args)]
 pub struct MeshArgs {
-    /// Mesh file: .vtk, .vtu, Exodus II (.e, .exo, .ex2, .g, .gen), or a
-    /// PLOT3D grid (*xyz.bin, *.xyz, *.x).
-    /// Default: the embedded Blunt Fin (PLOT3D, NASA).
+    /// Mesh file: .vtk (unstructured, structured, rectilinear or image
+    /// data), .vtu, .vts, .vtr, .vti, their parallel forms .pvtu, .pvts,
+    /// .pvtr, .pvti, multi-block .vtm, Exodus II (.e, .exo, .ex2, .g, .gen),
+    /// or a PLOT3D grid (*xyz.bin, *.xyz, *.x). Default: the embedded Blunt
+    /// Fin (PLOT3D, NASA).
     pub mesh: Option<PathBuf>,
     /// PLOT3D solution (q) file. Default: the grid's name with "xyz"
     /// replaced by "q" (postxyz.bin -> postq.bin), when it exists.
@@ -27,6 +29,10 @@ pub struct MeshArgs {
     /// Exodus II: read the time step whose stored time is nearest T.
     #[arg(long, value_name = "T", value_parser = parse_time, allow_hyphen_values = true)]
     pub time: Option<f64>,
+    /// For a multi-block .vtm: keep only this block (its name attribute,
+    /// or a path of names such as outer/inner). Default: every volume block.
+    #[arg(long, value_name = "NAME")]
+    pub block: Option<String>,
 }
 
 /// VTK/ParaView camera. Whatever is not given comes from a

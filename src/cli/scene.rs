@@ -6,8 +6,10 @@ use std::time::{Duration, Instant};
 
 use anyhow::{bail, Context};
 use glam::Vec3;
-use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunction};
-use tetray_mesh::{mean_tet_chord, value_range, LoadedMesh};
+use tetray_integrate::{
+    ColorPoint, IntegratorOptions, Method, OpacityPoint, ScalarIntegrator, TransferFunction,
+};
+use tetray_mesh::{default_field, mean_tet_chord, value_range, LoadedMesh, ScalarField};
 use tetray_raycast::{Camera, Scene};
 
 use super::args::{CameraArgs, IntegratorArgs, MeshArgs, WalkArgs};
@@ -48,8 +50,17 @@ impl MeshInput {
         } else {
             String::new()
         };
+        let p = &report.pieces;
+        let pieces = if p.pieces > 0 {
+            format!(
+                " from {} pieces ({} points welded, {} ghost cells dropped)",
+                p.pieces, p.welded_points, p.ghost_cells_dropped
+            )
+        } else {
+            String::new()
+        };
         format!(
-            "loaded {} ({}): {} points, {} tetrahedra{split}, {} boundary faces, {} component{} in {:.3} s",
+            "loaded {} ({}{pieces}): {} points, {} tetrahedra{split}, {} boundary faces, {} component{} in {:.3} s",
             self.name,
             report.format,
             mesh.points.len(),
@@ -88,6 +99,7 @@ pub fn load_mesh(args: &MeshArgs) -> anyhow::Result<MeshInput> {
                 plot3d_q: args.q.clone(),
                 time_step: args.time_step,
                 time: args.time,
+                block: args.block.clone(),
             };
             let loaded = tetray_mesh::load(path, &options)?;
             let timed = args.time_step.is_some() || args.time.is_some();
@@ -174,9 +186,20 @@ pub fn prepare(frame: FrameArgs<'_>, log: &dyn Fn(String)) -> anyhow::Result<Set
     let paraview_u = input.paraview_unit_distance();
     let MeshInput {
         name,
-        loaded,
+        mut loaded,
         load_time,
     } = input;
+    let field = field.unwrap_or_else(|| {
+        eprintln!(
+            "warning: {name} has no point scalar field (for PLOT3D, give the solution file with \
+             --q): rendering it as a uniform volume"
+        );
+        loaded.mesh.fields.push(ScalarField {
+            name: SOLID.into(),
+            values: vec![0.0; loaded.mesh.points.len()],
+        });
+        SOLID.to_string()
+    });
 
     let start = Instant::now();
     let scene = Scene::new(loaded.mesh, loaded.topology, &field, walk.bvh_preset)
@@ -197,24 +220,30 @@ pub fn prepare(frame: FrameArgs<'_>, log: &dyn Fn(String)) -> anyhow::Result<Set
     warn_if_inside(&camera, scene.bounds());
 
     let (lo, hi) = value_range(&scene.scalar);
-    if lo == hi && args.tf.is_none() {
-        // The Oxygen Post's density is 1 everywhere: an empty image with
-        // no hint why is what a user would otherwise get.
-        eprintln!(
-            "warning: field {field:?} is constant ({lo}): the default transfer function gives it \
-             no opacity and the image will be empty; pick another field with --scalar \
-             (`tetray info` lists them)"
-        );
-    }
+    let unit_distance = args.unit_distance.unwrap_or(paraview_u);
     let tf = match (&args.tf, &tf_text) {
         (Some(path), Some(text)) => {
             let rescale = (!args.no_rescale).then_some((lo, hi));
             TransferFunction::from_paraview_json(text, args.tf_name.as_deref(), rescale)
                 .with_context(|| format!("--tf {}", path.display()))?
         }
+        // A constant field (the Oxygen Post's density is 1 everywhere) would
+        // get no opacity from the default ramp: an empty image.
+        _ if lo == hi => {
+            let (lo_b, hi_b) = scene.bounds();
+            let unit_lengths = (hi_b - lo_b).length() / unit_distance;
+            let alpha = solid_alpha(unit_lengths);
+            if field != SOLID {
+                eprintln!(
+                    "warning: field {field:?} is constant ({lo}): rendering a uniform volume \
+                     (ParaView's Solid Color) of opacity {alpha} per unit distance; pick another \
+                     field with --scalar (`tetray info` lists them)"
+                );
+            }
+            solid_color(lo, alpha)
+        }
         _ => TransferFunction::default_for_range(lo, hi),
     };
-    let unit_distance = args.unit_distance.unwrap_or(paraview_u);
     let chord = mean_tet_chord(&scene.mesh);
     let options = IntegratorOptions {
         unit_distance,
@@ -260,8 +289,12 @@ pub fn prepare(frame: FrameArgs<'_>, log: &dyn Fn(String)) -> anyhow::Result<Set
     })
 }
 
-/// The field to render: the one named, or the first.
-fn pick_field(input: &MeshInput, scalar: Option<&str>) -> anyhow::Result<String> {
+/// The name of the field added to a mesh without fields.
+const SOLID: &str = "solid";
+
+/// The field to render: the one named, else the first that is not constant
+/// (see [`default_field`]); `None` for a mesh without fields.
+fn pick_field(input: &MeshInput, scalar: Option<&str>) -> anyhow::Result<Option<String>> {
     let fields = &input.loaded.mesh.fields;
     let names = || {
         fields
@@ -270,19 +303,42 @@ fn pick_field(input: &MeshInput, scalar: Option<&str>) -> anyhow::Result<String>
             .collect::<Vec<_>>()
             .join(", ")
     };
-    match (scalar, fields.first()) {
-        (_, None) => bail!(
-            "{} has no point scalar field to render (for PLOT3D, give the solution file with --q)",
-            input.name
-        ),
-        (None, Some(first)) => Ok(first.name.clone()),
-        (Some(name), Some(_)) if fields.iter().any(|f| f.name == name) => Ok(name.to_string()),
-        (Some(name), Some(_)) => bail!(
+    match scalar {
+        None => Ok(default_field(&input.loaded.mesh).map(|f| f.name.clone())),
+        Some(name) if fields.iter().any(|f| f.name == name) => Ok(Some(name.to_string())),
+        Some(name) if fields.is_empty() => {
+            bail!(
+                "--scalar {name:?}: {} has no point scalar field",
+                input.name
+            )
+        }
+        Some(name) => bail!(
             "--scalar {name:?}: {} has no such field; it has {}",
             input.name,
             names()
         ),
     }
+}
+
+/// Opacity per unit distance of a uniform volume: a ray along the bounds
+/// diagonal (`unit_lengths` unit distances long) keeps 30% of the light
+/// behind it, so the whole volume shows, translucent.
+fn solid_alpha(unit_lengths: f32) -> f32 {
+    let n = if unit_lengths.is_finite() && unit_lengths > 0.0 {
+        unit_lengths
+    } else {
+        1.0
+    };
+    (1.0 - 0.3f32.powf(1.0 / n)).clamp(0.01, 1.0)
+}
+
+/// ParaView's "Solid Color": one colour and one opacity for every value.
+fn solid_color(value: f32, alpha: f32) -> TransferFunction {
+    let gray = Vec3::splat(0.865);
+    let color = [value, value + 1.0].map(|scalar| ColorPoint { scalar, rgb: gray });
+    let opacity = [value, value + 1.0].map(|scalar| OpacityPoint { scalar, alpha });
+    TransferFunction::new(color.to_vec(), opacity.to_vec())
+        .expect("a two-point uniform transfer function is valid")
 }
 
 fn table_note(integrator: &ScalarIntegrator, options: &IntegratorOptions) -> String {

@@ -18,8 +18,8 @@ use tetray_mesh::value_range;
 pub struct ViewArgs {
     #[command(flatten)]
     pub mesh: MeshArgs,
-    /// Point scalar field to show first (default: the first; the viewer
-    /// lists them all).
+    /// Point scalar field to show first (default: the first that is not
+    /// constant; the viewer lists them all).
     #[arg(long, value_name = "NAME")]
     pub scalar: Option<String>,
     /// Integration method to start with (see `tetray render --help`).
@@ -71,8 +71,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
             .iter()
             .find(|f| &f.name == name)
             .with_context(|| format!("--scalar {name:?}: {} has no such field", input.name))?,
-        None => fields
-            .first()
+        None => tetray_mesh::default_field(&input.loaded.mesh)
             .with_context(|| format!("{} has no point scalar field to view", input.name))?,
     };
     let (lo, hi) = value_range(&field.values);

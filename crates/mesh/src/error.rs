@@ -25,8 +25,9 @@ pub enum MeshError {
 
     /// The file name does not say which reader to use.
     #[error(
-        "{file}: unknown mesh format: expected .vtk, .vtu, an Exodus II file (.e, .exo, \
-         .ex2, .g, .gen) or a PLOT3D grid (name ending in xyz.bin, .xyz or .x)"
+        "{file}: unknown mesh format: expected .vtk, .vtu, .vts, .vtr, .vti, .pvtu, \
+         .pvts, .pvtr, .pvti, .vtm, an Exodus II file (.e, .exo, .ex2, .g, .gen) or a \
+         PLOT3D grid (name ending in xyz.bin, .xyz or .x)"
     )]
     UnknownFormat { file: String },
 

@@ -4,6 +4,7 @@ use std::fmt;
 
 use glam::Vec3;
 
+use crate::vtk::PieceCounts;
 use crate::{ElementBlock, LoadedMesh};
 
 /// Range of one scalar field.
@@ -30,6 +31,8 @@ pub struct MeshSummary {
     pub degenerate_dropped: usize,
     pub cells_split: usize,
     pub tets_from_split: usize,
+    /// Pieces joined, points welded, ghost and blanked cells dropped.
+    pub pieces: PieceCounts,
     pub warnings: Vec<String>,
     /// The stored times (Exodus II), one per time step.
     pub times: Vec<f64>,
@@ -77,6 +80,7 @@ impl MeshSummary {
             degenerate_dropped: report.degenerate_dropped,
             cells_split: report.cells_split,
             tets_from_split: report.tets_from_split,
+            pieces: report.pieces,
             warnings: report.warnings.clone(),
             times: report.times.clone(),
             time_step: report.time_step,
@@ -131,6 +135,28 @@ impl fmt::Display for MeshSummary {
                     b.id, b.cells, b.elem_type, b.nodes_per_element
                 )?;
             }
+        }
+        let p = &self.pieces;
+        if p.pieces > 0 {
+            writeln!(
+                f,
+                "pieces:          {} joined, {} points welded, {} ghost cells dropped",
+                p.pieces, p.welded_points, p.ghost_cells_dropped
+            )?;
+        }
+        if p.blocks > 0 {
+            writeln!(
+                f,
+                "blocks:          {} read, {} skipped",
+                p.blocks, p.blocks_skipped
+            )?;
+        }
+        if p.hidden_cells_dropped > 0 || (p.pieces == 0 && p.ghost_cells_dropped > 0) {
+            writeln!(
+                f,
+                "blanked:         {} hidden and {} ghost cells dropped",
+                p.hidden_cells_dropped, p.ghost_cells_dropped
+            )?;
         }
         writeln!(f, "reoriented:      {}", self.inverted_fixed)?;
         writeln!(f, "flat dropped:    {}", self.degenerate_dropped)?;

@@ -40,7 +40,7 @@ pub use load::{
     load, load_plot3d_bytes, plot3d_q_sibling, prepare, LoadOptions, LoadReport, LoadedMesh,
 };
 pub use plot3d::{read_plot3d_bytes, read_plot3d_files, Plot3dRead};
-pub use scale::{mean_tet_chord, value_range};
+pub use scale::{default_field, mean_tet_chord, value_range};
 pub use validate::{validate, validate_with_topology, ValidationReport};
 
 use glam::Vec3;

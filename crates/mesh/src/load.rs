@@ -19,13 +19,18 @@ pub struct LoadOptions {
     /// Exodus II: read the time step whose stored time is nearest this
     /// (not together with `time_step`).
     pub time: Option<f64>,
+    /// For a multi-block `.vtm`: keep only the block of this name (or
+    /// path `outer/inner`, by the blocks' `name` attributes).
+    pub block: Option<String>,
 }
 
 /// What happened on the way from the file to the mesh.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct LoadReport {
-    /// The reader used: "VTK legacy", "VTK XML", "PLOT3D", "Exodus II" or
-    /// "memory".
+    /// The reader used: "VTK legacy", "VTK legacy STRUCTURED_GRID" (and
+    /// RECTILINEAR_GRID, STRUCTURED_POINTS), "VTK XML" (`.vtu`), "VTK XML
+    /// StructuredGrid" (and RectilinearGrid, ImageData), "VTK parallel
+    /// XML", "VTK multi-block", "Exodus II", "PLOT3D" or "memory".
     pub format: &'static str,
     /// Reader and validation warnings, as sentences.
     pub warnings: Vec<String>,
@@ -39,6 +44,10 @@ pub struct LoadReport {
     pub cells_split: usize,
     /// Tetrahedra made by those splits.
     pub tets_from_split: usize,
+    /// Pieces joined, points welded, ghost and blanked cells dropped, blocks
+    /// read and skipped (parallel and multi-block files; ghost and blanked
+    /// cells of any VTK file).
+    pub pieces: vtk::PieceCounts,
     /// Validation findings (components, duplicate points, seams...).
     pub validation: ValidationReport,
     /// The times the file stores, one per time step (Exodus II; empty for
@@ -63,21 +72,27 @@ pub struct LoadedMesh {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Format {
     Legacy,
-    Vtu,
+    /// Serial XML: `.vtu`, `.vts`, `.vtr`, `.vti`.
+    Xml,
+    /// `.pvtu`, `.pvts`, `.pvtr`, `.pvti`.
+    Parallel,
+    MultiBlock,
     Plot3d,
     Exodus,
 }
 
 fn format_of(path: &Path) -> Option<Format> {
     let name = path.file_name()?.to_string_lossy().to_lowercase();
-    if name.ends_with(".vtk") {
+    let ext = name.rsplit_once('.').map_or("", |(_, e)| e);
+    if ext == "vtk" {
         Some(Format::Legacy)
-    } else if name.ends_with(".vtu") {
-        Some(Format::Vtu)
-    } else if [".e", ".exo", ".ex2", ".g", ".gen"]
-        .iter()
-        .any(|ext| name.ends_with(ext))
-    {
+    } else if ["vtu", "vts", "vtr", "vti"].contains(&ext) {
+        Some(Format::Xml)
+    } else if ["pvtu", "pvts", "pvtr", "pvti"].contains(&ext) {
+        Some(Format::Parallel)
+    } else if ext == "vtm" {
+        Some(Format::MultiBlock)
+    } else if ["e", "exo", "ex2", "g", "gen"].contains(&ext) {
         Some(Format::Exodus)
     } else if name.ends_with("xyz.bin") || name.ends_with(".xyz") || name.ends_with(".x") {
         Some(Format::Plot3d)
@@ -101,10 +116,12 @@ pub fn plot3d_q_sibling(xyz: &Path) -> Option<PathBuf> {
     Some(xyz.with_file_name(q_name))
 }
 
-/// Reads the mesh at `path` (chosen by name, any case: `.vtk`, `.vtu`, an
-/// Exodus II file `.e`, `.exo`, `.ex2`, `.g`, `.gen`, or a PLOT3D grid
-/// `*xyz.bin`, `*.xyz`, `*.x`), then orients, validates and builds the
-/// topology (see [`prepare`]).
+/// Reads the mesh at `path` (chosen by name, any case: `.vtk` (any dataset
+/// type its DATASET line names), `.vtu`, `.vts`, `.vtr`, `.vti`, their
+/// parallel forms `.pvt*`, multi-block `.vtm`, an Exodus II file `.e`,
+/// `.exo`, `.ex2`, `.g`, `.gen`, or a PLOT3D grid `*xyz.bin`, `*.xyz`,
+/// `*.x`), then orients, validates and builds the topology (see
+/// [`prepare`]).
 ///
 /// # Errors
 /// [`MeshError::UnknownFormat`] for an unrecognised name, the reader's
@@ -113,8 +130,31 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<LoadedMesh, MeshError> {
     let file = path.display().to_string();
     let format = format_of(path).ok_or_else(|| MeshError::UnknownFormat { file: file.clone() })?;
     let read = match format {
-        Format::Legacy => from_vtk(vtk::read_legacy_file(path)?, "VTK legacy"),
-        Format::Vtu => from_vtk(vtk::read_vtu_file(path)?, "VTK XML"),
+        Format::Legacy => {
+            let read = vtk::read_legacy_file(path)?;
+            let format = match read.dataset {
+                "StructuredGrid" => "VTK legacy STRUCTURED_GRID",
+                "RectilinearGrid" => "VTK legacy RECTILINEAR_GRID",
+                "ImageData" => "VTK legacy STRUCTURED_POINTS",
+                _ => "VTK legacy",
+            };
+            from_vtk(read, format)
+        }
+        Format::Xml => {
+            let read = vtk::read_vtu_file(path)?;
+            let format = match read.dataset {
+                "StructuredGrid" => "VTK XML StructuredGrid",
+                "RectilinearGrid" => "VTK XML RectilinearGrid",
+                "ImageData" => "VTK XML ImageData",
+                _ => "VTK XML",
+            };
+            from_vtk(read, format)
+        }
+        Format::Parallel => from_vtk(vtk::read_parallel_file(path)?, "VTK parallel XML"),
+        Format::MultiBlock => from_vtk(
+            vtk::read_multiblock_file(path, opts.block.as_deref())?,
+            "VTK multi-block",
+        ),
         Format::Exodus => {
             let exodus = ExodusOptions {
                 time_step: opts.time_step,
@@ -186,6 +226,7 @@ struct Read {
     times: Vec<f64>,
     time_step: Option<usize>,
     blocks: Vec<ElementBlock>,
+    pieces: vtk::PieceCounts,
 }
 
 fn from_vtk(read: vtk::VtkRead, format: &'static str) -> Read {
@@ -196,6 +237,7 @@ fn from_vtk(read: vtk::VtkRead, format: &'static str) -> Read {
         warnings: read.warnings,
         cells_split: c.hexahedra + c.wedges + c.pyramids + c.voxels,
         tets_from_split: c.tets_from_split,
+        pieces: read.pieces,
         ..Read::default()
     }
 }
@@ -244,6 +286,7 @@ fn finish(mut read: Read) -> Result<LoadedMesh, MeshError> {
             degenerate_dropped: read.degenerate_dropped,
             cells_split: read.cells_split,
             tets_from_split: read.tets_from_split,
+            pieces: read.pieces,
             validation,
             times: read.times,
             time_step: read.time_step,
@@ -260,7 +303,10 @@ mod tests {
     fn formats_and_q_siblings() {
         let p = Path::new;
         assert_eq!(format_of(p("a/b.VTK")), Some(Format::Legacy));
-        assert_eq!(format_of(p("b.vtu")), Some(Format::Vtu));
+        assert_eq!(format_of(p("b.vtu")), Some(Format::Xml));
+        assert_eq!(format_of(p("b.VTI")), Some(Format::Xml));
+        assert_eq!(format_of(p("d/b.pvtu")), Some(Format::Parallel));
+        assert_eq!(format_of(p("b.vtm")), Some(Format::MultiBlock));
         assert_eq!(format_of(p("postxyz.bin")), Some(Format::Plot3d));
         assert_eq!(format_of(p("grid.x")), Some(Format::Plot3d));
         assert_eq!(format_of(p("grid.obj")), None);

@@ -65,6 +65,20 @@ pub fn value_range(values: &[f32]) -> (f32, f32) {
         })
 }
 
+/// The field a user expects to see first: the first that is not constant
+/// (the readers put point fields before cell fields averaged to points,
+/// and vectors as magnitudes), else the first; `None` without fields.
+pub fn default_field(mesh: &TetMesh) -> Option<&crate::ScalarField> {
+    let varies = |f: &&crate::ScalarField| {
+        let (lo, hi) = value_range(&f.values);
+        lo < hi
+    };
+    mesh.fields
+        .iter()
+        .find(varies)
+        .or_else(|| mesh.fields.first())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -88,5 +102,20 @@ mod tests {
         let expected = (2.0f32 / 3.0).sqrt() / 3.0;
         assert!((mean_tet_chord(&mesh) - expected).abs() < 1e-6);
         assert_eq!(value_range(&[2.0, -1.0, 5.0]), (-1.0, 5.0));
+    }
+
+    #[test]
+    fn default_field_is_the_first_that_varies() {
+        let field = |name: &str, values: Vec<f32>| crate::ScalarField {
+            name: name.into(),
+            values,
+        };
+        let mut mesh = TetMesh::default();
+        assert!(default_field(&mesh).is_none());
+        mesh.fields = vec![field("flat", vec![1.0, 1.0]), field("also", vec![2.0, 2.0])];
+        assert_eq!(default_field(&mesh).map(|f| f.name.as_str()), Some("flat"));
+        mesh.fields.push(field("p", vec![0.0, 3.0]));
+        mesh.fields.push(field("q", vec![1.0, 3.0]));
+        assert_eq!(default_field(&mesh).map(|f| f.name.as_str()), Some("p"));
     }
 }

@@ -7,7 +7,7 @@ use glam::Vec3;
 
 use super::cells::{classify, type_name, CellKind};
 use super::split::split_cell;
-use super::{CellCounts, VtkError, VtkRead};
+use super::{CellCounts, PieceCounts, VtkError, VtkRead};
 use crate::{ScalarField, TetMesh};
 
 /// A named point or cell array as read, `components` values per tuple.
@@ -39,6 +39,13 @@ pub(crate) struct RawGrid {
     pub point_arrays: Vec<RawArray>,
     pub cell_arrays: Vec<RawArray>,
     pub warnings: Vec<String>,
+    /// The VTK dataset type read ("UnstructuredGrid", "StructuredGrid"...).
+    pub dataset: &'static str,
+    /// The point array holding global point ids, when the file marks one
+    /// (`<PointData GlobalIds="...">`): pieces are welded by it.
+    pub global_ids: Option<String>,
+    /// Pieces, welding and ghost cells, for the load report.
+    pub pieces: PieceCounts,
 }
 
 /// Checks what the reader can see, splits the cells and builds the mesh.
@@ -177,6 +184,8 @@ pub(crate) fn assemble(mut grid: RawGrid, file: &str) -> Result<VtkRead, VtkErro
         },
         warnings,
         cells: counts,
+        dataset: grid.dataset,
+        pieces: grid.pieces,
     })
 }
 

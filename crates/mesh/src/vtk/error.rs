@@ -90,9 +90,38 @@ pub enum VtkError {
         found: usize,
     },
 
-    /// A dataset other than an unstructured grid.
-    #[error("{file}: dataset \"{found}\" is not supported: only unstructured grids (legacy UNSTRUCTURED_GRID, XML UnstructuredGrid) are read")]
+    /// A dataset type the readers do not read (polygonal data...).
+    #[error("{file}: dataset \"{found}\" is not supported: the readers take unstructured grids, structured grids, rectilinear grids and images (legacy UNSTRUCTURED_GRID, STRUCTURED_GRID, RECTILINEAR_GRID, STRUCTURED_POINTS; XML .vtu, .vts, .vtr, .vti, their parallel forms and .vtm)")]
     UnsupportedDataset { file: String, found: String },
+
+    /// A piece of a parallel file, or a block of a multi-block file, that
+    /// names a file which does not exist.
+    #[error("{file}: {what} \"{source_name}\" is missing: no file {path}")]
+    MissingFile {
+        file: String,
+        /// "piece" or "block \"name\"".
+        what: String,
+        /// As written in the file.
+        source_name: String,
+        /// Where it was looked for.
+        path: String,
+    },
+
+    /// Nothing to render: no volume cell in the file (or the blocks kept).
+    #[error("{file} holds {found}: nothing to volume-render")]
+    NoVolumeCells {
+        file: String,
+        /// "only surface cells (16 quadrilaterals in 2 blocks)", "no cells"...
+        found: String,
+    },
+
+    /// `--block` names no block of a multi-block file.
+    #[error("{file}: no block named \"{block}\"; the blocks are: {blocks}")]
+    NoSuchBlock {
+        file: String,
+        block: String,
+        blocks: String,
+    },
 
     /// XML that does not parse or lacks the structure of a .vtu file.
     #[error("{file}: line {line}: malformed XML: {message}")]

@@ -1,4 +1,5 @@
-//! Legacy `.vtk` UNSTRUCTURED_GRID reader, ASCII and BINARY (big-endian).
+//! Legacy `.vtk` reader, ASCII and BINARY (big-endian): UNSTRUCTURED_GRID,
+//! and the structured datasets whose own sections `legacy_structured` reads.
 //!
 //! Sections: POINTS; CELLS in the count-prefixed form (`CELLS n size`) and
 //! the VTK 5.1 form (`CELLS noffsets nconn` + OFFSETS + CONNECTIVITY);
@@ -10,7 +11,9 @@
 
 use super::assemble::{assemble, RawArray, RawGrid};
 use super::legacy_lex::{decode_name, Cursor};
+use super::legacy_structured::{Kind, Structured};
 use super::numeric::Scalar;
+use super::pieces::finish_grid;
 use super::{VtkError, VtkRead};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -58,6 +61,8 @@ struct Parser<'a> {
     point_data: Option<Declared>,
     cell_data: Option<Declared>,
     mode: Attributes,
+    /// None for UNSTRUCTURED_GRID.
+    structured: Option<Structured>,
 }
 
 /// Parses a legacy VTK file held in memory; `name` is used in messages.
@@ -71,15 +76,44 @@ pub(crate) fn read(bytes: &[u8], name: &str) -> Result<VtkRead, VtkError> {
         point_data: None,
         cell_data: None,
         mode: Attributes::Dataset,
+        structured: None,
     };
     p.header()?;
     while let Some(keyword) = p.cur.token() {
         let line = p.cur.line();
         let keyword = String::from_utf8_lossy(keyword).to_ascii_uppercase();
+        if let Some(s) = p.structured.as_mut() {
+            if s.section(&keyword, &mut p.cur)? {
+                continue;
+            }
+        }
         p.section(&keyword, line)?;
     }
+    // The declared counts are checked before the grid's points and cells
+    // are made from the dimensions.
+    let structured = p.structured.take();
+    if let Some(s) = &structured {
+        let (npoints, ncells) = s.counts(name)?;
+        let line = 1;
+        p.points = Some(Declared {
+            count: npoints,
+            line,
+        });
+        p.cells = Some(Declared {
+            count: ncells,
+            line,
+        });
+        p.cell_types = p.cells;
+    }
     p.finish()?;
-    assemble(p.grid, name)
+    if let Some(s) = &structured {
+        s.finish(&mut p.grid, name)?;
+    }
+    let grid = finish_grid(p.grid, name)?;
+    if grid.dataset != "UnstructuredGrid" {
+        super::collection::require_volume(&grid, name, "")?;
+    }
+    assemble(grid, name)
 }
 
 impl Parser<'_> {
@@ -123,7 +157,11 @@ impl Parser<'_> {
                 .syntax(format!("expected DATASET, found \"{keyword}\"")));
         }
         let dataset = self.cur.word("a dataset type")?;
-        if !dataset.eq_ignore_ascii_case("UNSTRUCTURED_GRID") {
+        self.grid.dataset = "UnstructuredGrid";
+        if let Some(kind) = Kind::of(dataset) {
+            self.grid.dataset = kind.dataset();
+            self.structured = Some(Structured::new(kind));
+        } else if !dataset.eq_ignore_ascii_case("UNSTRUCTURED_GRID") {
             return Err(VtkError::UnsupportedDataset {
                 file: self.cur.file.into(),
                 found: dataset.into(),
@@ -187,7 +225,7 @@ impl Parser<'_> {
     }
 
     fn points(&mut self, line: usize) -> Result<(), VtkError> {
-        if self.points.is_some() {
+        if self.points.is_some() || !self.grid.points.is_empty() {
             return Err(self.cur.syntax("a second POINTS section"));
         }
         let count = self.cur.count("the number of points")?;

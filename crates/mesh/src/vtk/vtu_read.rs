@@ -1,21 +1,35 @@
-//! XML `.vtu` UnstructuredGrid reader: Pieces are decoded and concatenated
-//! into one raw grid.
+//! Serial VTK XML reader: the UnstructuredGrid (`.vtu`) Pieces are decoded
+//! and concatenated into one raw grid; the structured datasets (`.vts`,
+//! `.vtr`, `.vti`) go to `xml_structured`.
 
 use super::assemble::{assemble, RawArray, RawGrid};
 use super::numeric::Scalar;
+use super::pieces::finish_grid;
 use super::vtu_data::ArrayDecoder;
 use super::vtu_xml::{self, XmlArray, XmlPiece};
-use super::{VtkError, VtkRead};
+use super::{xml_structured, VtkError, VtkRead};
 
-/// Parses a `.vtu` file held in memory; `name` is used in messages.
+/// Parses a serial VTK XML file held in memory; `name` is used in messages.
 pub(crate) fn read(bytes: &[u8], name: &str) -> Result<VtkRead, VtkError> {
-    let doc = vtu_xml::parse(bytes, name)?;
+    let grid = finish_grid(read_raw(bytes, name)?, name)?;
+    if grid.dataset != "UnstructuredGrid" {
+        super::collection::require_volume(&grid, name, "")?;
+    }
+    assemble(grid, name)
+}
+
+/// The raw grid of a serial VTK XML file of any dataset type read.
+pub(crate) fn read_raw(bytes: &[u8], name: &str) -> Result<RawGrid, VtkError> {
+    let mut doc = vtu_xml::parse(bytes, name)?;
     if doc.pieces.is_empty() {
         return Err(VtkError::Invalid {
             file: name.into(),
-            section: "<UnstructuredGrid>".into(),
+            section: format!("<{}>", doc.dataset),
             message: "no <Piece> element".into(),
         });
+    }
+    if doc.dataset != "UnstructuredGrid" {
+        return xml_structured::read_raw(&mut doc, name);
     }
     let decoder = ArrayDecoder {
         file: name,
@@ -23,6 +37,7 @@ pub(crate) fn read(bytes: &[u8], name: &str) -> Result<VtkRead, VtkError> {
     };
     let mut grid = RawGrid {
         points_section: "Points".into(),
+        dataset: "UnstructuredGrid",
         ..RawGrid::default()
     };
     let mut point_arrays = Vec::new();
@@ -44,10 +59,20 @@ pub(crate) fn read(bytes: &[u8], name: &str) -> Result<VtkRead, VtkError> {
     }
     grid.point_arrays = merge(point_arrays, &mut grid.warnings);
     grid.cell_arrays = merge(cell_arrays, &mut grid.warnings);
-    assemble(grid, name)
+    grid.global_ids = common_global_ids(&doc.pieces);
+    Ok(grid)
 }
 
-fn piece_error(file: &str, piece: &XmlPiece, k: usize, message: String) -> VtkError {
+/// The global point id array's name when every piece marks the same one.
+pub(crate) fn common_global_ids(pieces: &[XmlPiece]) -> Option<String> {
+    let first = pieces.first()?.global_ids.clone()?;
+    pieces
+        .iter()
+        .all(|p| p.global_ids.as_deref() == Some(first.as_str()))
+        .then_some(first)
+}
+
+pub(crate) fn piece_error(file: &str, piece: &XmlPiece, k: usize, message: String) -> VtkError {
     VtkError::Invalid {
         file: file.into(),
         section: format!("line {}, Piece {k}", piece.line),
@@ -55,12 +80,12 @@ fn piece_error(file: &str, piece: &XmlPiece, k: usize, message: String) -> VtkEr
     }
 }
 
-fn section(a: &XmlArray, k: usize, place: &str) -> String {
+pub(crate) fn section(a: &XmlArray, k: usize, place: &str) -> String {
     let name = a.name.as_deref().unwrap_or("");
     format!("line {}, Piece {k} {place} DataArray \"{name}\"", a.line)
 }
 
-fn expect_count(
+pub(crate) fn expect_count(
     file: &str,
     section: &str,
     what: &str,
@@ -79,7 +104,7 @@ fn expect_count(
     })
 }
 
-fn read_points(
+pub(crate) fn read_points(
     d: &ArrayDecoder<'_, '_>,
     piece: &XmlPiece,
     k: usize,
@@ -212,7 +237,7 @@ fn read_cells(
 
 /// The PointData (or CellData) arrays of one piece. Arrays of a type that
 /// is not numeric (String, Bit) are skipped with a warning.
-fn read_arrays(
+pub(crate) fn read_arrays(
     d: &ArrayDecoder<'_, '_>,
     piece: &XmlPiece,
     k: usize,
@@ -256,7 +281,7 @@ fn read_arrays(
 
 /// Concatenates the arrays of the non-empty pieces; an array missing from
 /// some piece (by name and component count) is dropped with a warning.
-fn merge(per_piece: Vec<Vec<RawArray>>, warnings: &mut Vec<String>) -> Vec<RawArray> {
+pub(crate) fn merge(per_piece: Vec<Vec<RawArray>>, warnings: &mut Vec<String>) -> Vec<RawArray> {
     let mut pieces = per_piece.into_iter();
     let Some(mut merged) = pieces.next() else {
         return Vec::new();

@@ -1,6 +1,7 @@
-//! The XML structure of a `.vtu` file: VTKFile attributes, Pieces and their
-//! DataArrays (attributes and text), and where the appended data starts.
-//! Decoding the arrays is `vtu_data`'s job.
+//! The XML structure of a serial VTK XML file (`.vtu`, `.vts`, `.vtr`,
+//! `.vti`): VTKFile attributes, the dataset element's attributes (extents,
+//! origin, spacing), Pieces and their DataArrays (attributes and text), and
+//! where the appended data starts. Decoding the arrays is `vtu_data`'s job.
 //!
 //! Appended raw data is not XML, so parsing stops at the start tag of
 //! `<AppendedData>`; its bytes are located by hand from there.
@@ -39,7 +40,35 @@ pub(crate) struct XmlPiece {
     pub cells: Vec<XmlArray>,
     pub point_data: Vec<XmlArray>,
     pub cell_data: Vec<XmlArray>,
+    /// `<Coordinates>` arrays of a RectilinearGrid (x, y, z).
+    pub coordinates: Vec<XmlArray>,
+    /// The Piece's attributes (`Extent` of structured pieces).
+    pub attributes: Vec<(String, String)>,
+    /// The point array that `<PointData GlobalIds="...">` names.
+    pub global_ids: Option<String>,
 }
+
+impl XmlPiece {
+    pub fn attribute(&self, key: &str) -> Option<&str> {
+        find(&self.attributes, key)
+    }
+}
+
+/// The value of `key` in a list of attributes.
+pub(crate) fn find<'v>(attributes: &'v [(String, String)], key: &str) -> Option<&'v str> {
+    attributes
+        .iter()
+        .find(|(k, _)| k == key)
+        .map(|(_, v)| v.as_str())
+}
+
+/// The XML dataset types read: the `type` of `<VTKFile>`.
+pub(crate) const DATASETS: [&str; 4] = [
+    "UnstructuredGrid",
+    "StructuredGrid",
+    "RectilinearGrid",
+    "ImageData",
+];
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum AppendedEncoding {
@@ -57,6 +86,10 @@ pub(crate) struct Appended<'a> {
 
 #[derive(Debug, Clone)]
 pub(crate) struct VtuDoc<'a> {
+    /// One of [`DATASETS`].
+    pub dataset: String,
+    /// The dataset element's attributes (`WholeExtent`, `Origin`...).
+    pub dataset_attributes: Vec<(String, String)>,
     pub big_endian: bool,
     pub header_u64: bool,
     pub compressor: Option<String>,
@@ -71,6 +104,7 @@ enum Target {
     Cells,
     PointData,
     CellData,
+    Coordinates,
     Ignored,
 }
 
@@ -120,6 +154,8 @@ pub(crate) fn parse<'a>(bytes: &'a [u8], file: &'a str) -> Result<VtuDoc<'a>, Vt
             line: 1,
         },
         doc: VtuDoc {
+            dataset: String::new(),
+            dataset_attributes: Vec::new(),
             big_endian: false,
             header_u64: false,
             compressor: None,
@@ -212,13 +248,32 @@ impl<'a> Builder<'a> {
                 let message = format!("the root element is <{other}>, not <VTKFile>");
                 return Err(self.xml_error(at, message));
             }
-            (Some("VTKFile"), other) if other != "UnstructuredGrid" => {
+            (Some("VTKFile"), other)
+                if other == self.doc.dataset || self.doc.dataset.is_empty() =>
+            {
+                if !DATASETS.contains(&other) {
+                    return Err(VtkError::UnsupportedDataset {
+                        file: self.file.into(),
+                        found: other.into(),
+                    });
+                }
+                self.doc.dataset = other.into();
+                self.doc.dataset_attributes = self.attributes(e, at)?;
+            }
+            (Some("VTKFile"), other) if DATASETS.contains(&other) => {
+                let message = format!(
+                    "<VTKFile type=\"{}\"> holds a <{other}> element",
+                    self.doc.dataset
+                );
+                return Err(self.xml_error(at, message));
+            }
+            (Some("VTKFile"), other) if other != "AppendedData" => {
                 return Err(VtkError::UnsupportedDataset {
                     file: self.file.into(),
                     found: other.into(),
                 });
             }
-            (Some("UnstructuredGrid"), "Piece") => {
+            (Some(parent), "Piece") if parent == self.doc.dataset => {
                 let attrs = self.attributes(e, at)?;
                 let line = self.lines.at(at);
                 let count = |key: &str| -> Result<usize, VtkError> {
@@ -243,6 +298,7 @@ impl<'a> Builder<'a> {
                     line,
                     npoints: count("NumberOfPoints")?,
                     ncells: count("NumberOfCells")?,
+                    attributes: attrs.clone(),
                     ..XmlPiece::default()
                 });
             }
@@ -252,8 +308,15 @@ impl<'a> Builder<'a> {
                     "Cells" => Target::Cells,
                     "PointData" => Target::PointData,
                     "CellData" => Target::CellData,
+                    "Coordinates" => Target::Coordinates,
                     _ => Target::Ignored,
                 };
+                if section == "PointData" {
+                    let ids = find(&self.attributes(e, at)?, "GlobalIds").map(str::to_string);
+                    if let Some(piece) = self.piece.as_mut() {
+                        piece.global_ids = ids;
+                    }
+                }
             }
             (Some(_), "DataArray") if self.array.is_none() && self.piece.is_some() => {
                 let array = self.data_array(e, at)?;
@@ -276,12 +339,13 @@ impl<'a> Builder<'a> {
         };
         for (key, value) in self.attributes(e, at)? {
             match key.as_str() {
-                "type" if value != "UnstructuredGrid" => {
+                "type" if !DATASETS.contains(&value.as_str()) => {
                     return Err(VtkError::UnsupportedDataset {
                         file: self.file.into(),
                         found: value,
                     })
                 }
+                "type" => self.doc.dataset = value,
                 "byte_order" => {
                     self.doc.big_endian = match value.as_str() {
                         "LittleEndian" => false,
@@ -375,6 +439,7 @@ impl<'a> Builder<'a> {
                     Target::Cells => piece.cells.push(array),
                     Target::PointData => piece.point_data.push(array),
                     Target::CellData => piece.cell_data.push(array),
+                    Target::Coordinates => piece.coordinates.push(array),
                     _ => {}
                 }
             }
