@@ -180,7 +180,7 @@ fn bad_arguments_are_one_line_and_exit_1() {
                 "-o",
                 "x",
             ],
-            "postxyz.bin",
+            "nowhere: no such folder (--data-dir)",
         ),
         (
             &[

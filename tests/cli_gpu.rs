@@ -132,10 +132,11 @@ fn reference_methods_refuse_the_gpu() {
 
 /// `--renderer project --sort mpvo` on a convex mesh matches the GPU ray
 /// caster: the same segments integrated by the same WGSL, in an order that
-/// is exact for convex connected meshes. Budget 1e-4 per channel (4e-3 when
-/// the adapter blends only rgba16float, 11-bit mantissas per draw), 1% of
-/// pixels beyond it: pixel centres within the rasterizer's fixed-point
-/// snapping of a silhouette edge (see crates/project/tests/gpu.rs).
+/// is exact for convex connected meshes. Every pixel within 1e-4 per
+/// channel (4e-3 when the adapter blends only rgba16float, 11-bit mantissas
+/// per draw). Measured on lavapipe: worst 4.9e-6, no pixel beyond, the
+/// silhouette pixels included (the rasterizer's fixed-point snapping
+/// decides no pixel centre differently from the ray caster on this view).
 #[test]
 fn projection_matches_the_ray_caster_on_a_convex_mesh() {
     if !have_gpu() {
@@ -185,15 +186,17 @@ fn projection_matches_the_ray_caster_on_a_convex_mesh() {
     let errors: Vec<f32> = gpu
         .chunks(4)
         .zip(project.chunks(4))
-        .map(|(a, b)| a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f32::max))
+        .map(|(a, b)| {
+            a.iter()
+                .zip(b)
+                .map(|(x, y)| (x - y).abs())
+                .fold(0.0, f32::max)
+        })
         .collect();
     let beyond = errors.iter().filter(|&&e| e > budget).count();
     let worst = errors.iter().copied().fold(0.0, f32::max);
     eprintln!("projection vs ray caster: {beyond} pixels beyond {budget}, worst {worst:.2e}");
-    assert!(
-        beyond * 100 <= gpu.len() / 4,
-        "{beyond} pixels beyond {budget}"
-    );
+    assert_eq!(beyond, 0, "{beyond} pixels beyond {budget}, worst {worst}");
     assert!(project.chunks(4).filter(|p| p[3] > 0.05).count() > 100);
 }
 

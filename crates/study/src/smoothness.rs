@@ -511,10 +511,11 @@ fn checks(profiles: &[Profile]) -> Vec<Check> {
                 Model::LinearAttenuation => {
                     for method in [Method::Exact, Method::Ppi] {
                         if let Some(p) = find(case.name, method, lum) {
-                            // f32 rendering and the 1024^2 table: 1e-5.
+                            // f32 rendering and the 1024^2 table: measured
+                            // range and error at most 3.9e-7; 2e-6 is 5x.
                             checks.push(Check::new(
                                 format!("{tag}: {method} flat and right"),
-                                p.range < 1e-5 && p.max_error < 1e-5,
+                                p.range < 2e-6 && p.max_error < 2e-6,
                                 format!("range {:.2e}, error {:.2e}", p.range, p.max_error),
                             ));
                         }
@@ -556,10 +557,11 @@ fn checks(profiles: &[Profile]) -> Vec<Check> {
         .filter_map(|p| p.gpu_difference)
         .reduce(f64::max)
     {
-        // The kernel's f32 erfcx / Dawson and log1p forms against the CPU's.
+        // The kernel's f32 erfcx / Dawson and log1p forms against the CPU's:
+        // measured 1.0e-6 on lavapipe (1.3e-6 reported before); 5e-6 is 4x.
         checks.push(Check::new(
             "GPU ray caster matches the CPU one",
-            worst < 1e-4,
+            worst < 5e-6,
             format!("max difference {worst:.2e}"),
         ));
     }

@@ -161,16 +161,21 @@ fn accuracy_study_small() {
             get(Device::Gpu, "ppi", d),
             get(Device::Gpu, "exact", d)
         );
+        // PPI: the 1024^2 Psi table's bilinear lookup in f32. Measured
+        // 2.4e-7 to 3.8e-7 (CPU and lavapipe alike); 2e-6 leaves 5x for
+        // other devices' exp / log and table filtering.
         assert!(
-            ppi < 1e-5 && ppi < average,
+            ppi < 2e-6 && ppi < average,
             "D = {d}: ppi {ppi} average {average}"
         );
         if let Some(gpu_ppi) = get(Device::Gpu, "ppi", d) {
             // f32 in the kernel: eq. 5.5 and the bilinear lookup, as on the CPU.
-            assert!(gpu_ppi < 1e-5, "D = {d}: gpu ppi {gpu_ppi}");
+            assert!(gpu_ppi < 2e-6, "D = {d}: gpu ppi {gpu_ppi}");
             let gpu_exact = get(Device::Gpu, "exact", d).unwrap();
-            // The kernel's f32 erfcx / Dawson forms (2e-7 to 4e-7 relative).
-            assert!(gpu_exact < 1e-5, "D = {d}: gpu exact {gpu_exact}");
+            // The kernel's f32 erfcx / Dawson forms (2e-7 to 4e-7 relative):
+            // measured 6.5e-8 to 6.1e-7 on lavapipe, 1.8e-6 reported on
+            // an earlier build; 3e-6 is that with a margin of 1.7x.
+            assert!(gpu_exact < 3e-6, "D = {d}: gpu exact {gpu_exact}");
         }
     }
     // Averaging's error grows with D towards one half (figs. 6.5-6.8).

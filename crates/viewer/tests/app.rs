@@ -180,11 +180,13 @@ fn switching_and_comparing_methods() {
     // Two approximations of the same integral: close, not identical.
     let (worst, _) = difference(&preint, &ppi, 0);
     assert!(worst > 0, "the method changed the image");
-    let (_, far) = difference(&preint, &ppi, 24);
-    eprintln!("preintegrated vs ppi: worst {worst}, {far} pixels over 24");
+    // Both are exact up to their tables on this view: measured worst 1
+    // level of 255 (the 8-bit rounding of a ~1e-4 difference); no pixel
+    // may differ by more than 3.
+    eprintln!("preintegrated vs ppi: worst {worst}");
     assert!(
-        far <= (ppi.width() * ppi.height() / 50) as usize,
-        "{far} pixels far from ppi"
+        worst <= 3,
+        "preintegrated differs from ppi by {worst} levels"
     );
 
     harness.get_by_label("Compare with a second method").click();
@@ -207,8 +209,7 @@ fn switching_and_comparing_methods() {
 /// the projection's (its report names it) and shows the ray caster's view.
 /// On the Blunt Fin from this camera the two differ only at single pixels
 /// along cell edges (0.6% of pixels over 1/255 at 256 x 256 in `tetray
-/// compare`): here at most 2% of the pixels may differ by more than 24
-/// levels.
+/// compare`; bounds below).
 #[test]
 fn the_cell_projection_shows_the_ray_casters_view() {
     if !gpu_or_skip() {
@@ -231,15 +232,20 @@ fn the_cell_projection_shows_the_ray_casters_view() {
     let projected = displayed(&harness);
     let (worst, _) = difference(&projected, &raycast, 0);
     assert!(worst > 0, "the projection made its own image");
-    let (_, far) = difference(&projected, &raycast, 24);
-    for level in [1, 2, 4, 8, 16, 24] {
-        let (_, n) = difference(&projected, &raycast, level);
-        eprintln!("projection vs ray caster: {n} pixels over {level} (worst {worst})");
-    }
-    assert!(
-        far <= (raycast.width() * raycast.height() / 50) as usize,
-        "{far} pixels far from the ray caster's"
+    // Measured on lavapipe: 38 of the 76 x 84 pixels (0.6%, as in `tetray
+    // compare`) over 1 level, the worst 13 levels, none over 16. Bounds
+    // with a margin: at most 1.5% over 1 level, and no pixel over 24.
+    let (_, over_one) = difference(&projected, &raycast, 1);
+    eprintln!(
+        "projection vs ray caster: {over_one} of {}x{} pixels over 1 level, worst {worst}",
+        raycast.width(),
+        raycast.height()
     );
+    assert!(
+        over_one * 1000 <= (raycast.width() * raycast.height() * 15) as usize,
+        "{over_one} pixels differ from the ray caster's by more than 1 level"
+    );
+    assert!(worst <= 24, "a pixel differs by {worst} levels");
 }
 
 /// A preset that is not valid JSON: the editor shows the error and keeps

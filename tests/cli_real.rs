@@ -1,0 +1,91 @@
+//! Every file of `data/real` (VTK's test-data collection, as their writers
+//! made them) through the binary as a user runs it: `info --json` reads
+//! the counts, `render` makes an image with something in it and says what
+//! it had to change, and the one file with no volume cell is one clear
+//! error.
+
+use std::path::{Path, PathBuf};
+
+use serde_json::Value;
+
+mod support;
+use support::{run, text};
+
+fn real(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("data/real")
+        .join(name)
+}
+
+/// The volumetric samples, with the tetrahedra each must give at least
+/// (a lower bound from its cell count: one tetrahedron per linear cell, 8
+/// per quadratic tetrahedron; exact counts are the mesh crate's tests).
+const VOLUMES: [(&str, u64); 10] = [
+    // 7472 HEX8 cells.
+    ("disk_out_ref.ex2", 7472),
+    // 39,353 cells over 4 pieces.
+    ("blood_vessels/T0000000500.pvtu", 39_353),
+    // 5 x 11 x 8 hexahedra.
+    ("StructuredGrid.vts", 440),
+    // 96 quadratic tetrahedra, 8 tetrahedra each.
+    ("QuadraticTetra.vtu", 768),
+    ("tetra.vtu", 8),
+    ("QuadraticWedge.vtu", 48),
+    ("notch_disp.vtu", 2192),
+    ("polyhedron2pieces.vtu", 2),
+    ("can.vtu", 1000),
+    ("uGridEx.vtk", 4),
+];
+
+#[test]
+fn every_volumetric_sample_loads_and_renders() {
+    let dir = support::scratch("cli-real", "render");
+    for (name, min_tets) in VOLUMES {
+        let path = real(name);
+        let file = path.to_str().expect("UTF-8 path");
+        let out = run(&dir, &["info", "--json", file]);
+        assert!(out.status.success(), "info {name}: {}", text(&out.stderr));
+        let info: Value = serde_json::from_slice(&out.stdout).expect("JSON");
+        let tets = info["tets"].as_u64().expect("tets");
+        assert!(tets >= min_tets, "{name}: {tets} tetrahedra: {info}");
+
+        let image = dir.join("image.exr");
+        let out = run(
+            &dir,
+            &[
+                "render",
+                file,
+                "--size",
+                "40x40",
+                "--renderer",
+                "cpu",
+                "-o",
+                image.to_str().expect("UTF-8"),
+            ],
+        );
+        let said = format!("{}{}", text(&out.stdout), text(&out.stderr));
+        assert!(out.status.success(), "render {name}:\n{said}");
+        let pixels = image::open(&image).expect("EXR").into_rgba32f().into_raw();
+        // Something of the volume is in view: at least 2% of the pixels
+        // have some opacity (the smallest sample, uGridEx, covers ~5%).
+        let lit = pixels.chunks(4).filter(|p| p[3] > 1e-4).count();
+        assert!(lit >= 32, "{name}: {lit} pixels lit:\n{said}");
+        eprintln!("{name}: {tets} tetrahedra, {lit} of 1600 pixels lit");
+    }
+}
+
+#[test]
+fn a_multi_block_file_of_surfaces_is_one_clear_error() {
+    let dir = support::scratch("cli-real", "surfaces");
+    let path = real("ex-blow_5.vtm");
+    for command in ["info", "render"] {
+        let out = run(&dir, &[command, path.to_str().expect("UTF-8")]);
+        assert_eq!(out.status.code(), Some(1), "{command}");
+        let stderr = text(&out.stderr);
+        let lines: Vec<&str> = stderr.lines().collect();
+        assert_eq!(lines.len(), 1, "{command}: {stderr}");
+        assert!(lines[0].starts_with("error: "), "{stderr}");
+        assert!(lines[0].contains("ex-blow_5.vtm"), "{stderr}");
+        assert!(lines[0].contains("surface"), "{stderr}");
+    }
+}
