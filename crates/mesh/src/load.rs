@@ -13,6 +13,9 @@ pub struct LoadOptions {
     /// `xyz` replaced by `q` (`postxyz.bin` -> `postq.bin`, `a.xyz` or
     /// `a.x` -> `a.q`), used when it exists.
     pub plot3d_q: Option<PathBuf>,
+    /// Quadratic and Lagrange cells: subdivided through all their nodes
+    /// (default) or reduced to their corners.
+    pub linearize: vtk::Linearize,
 }
 
 /// What happened on the way from the file to the mesh.
@@ -32,6 +35,9 @@ pub struct LoadReport {
     pub cells_split: usize,
     /// Tetrahedra made by those splits.
     pub tets_from_split: usize,
+    /// Points the splits added (face and cell centres of higher-order
+    /// cells, polyhedra and prisms), their fields interpolated.
+    pub points_added: usize,
     /// Validation findings (components, duplicate points, seams...).
     pub validation: ValidationReport,
 }
@@ -91,9 +97,12 @@ pub fn plot3d_q_sibling(xyz: &Path) -> Option<PathBuf> {
 pub fn load(path: &Path, opts: &LoadOptions) -> Result<LoadedMesh, MeshError> {
     let file = path.display().to_string();
     let format = format_of(path).ok_or_else(|| MeshError::UnknownFormat { file: file.clone() })?;
+    let vtk_opts = vtk::ReadOptions {
+        linearize: opts.linearize,
+    };
     let read = match format {
-        Format::Legacy => from_vtk(vtk::read_legacy_file(path)?, "VTK legacy"),
-        Format::Vtu => from_vtk(vtk::read_vtu_file(path)?, "VTK XML"),
+        Format::Legacy => from_vtk(vtk::read_legacy_file_with(path, &vtk_opts)?, "VTK legacy"),
+        Format::Vtu => from_vtk(vtk::read_vtu_file_with(path, &vtk_opts)?, "VTK XML"),
         Format::Plot3d => {
             let mut warnings = Vec::new();
             let q = match &opts.plot3d_q {
@@ -155,6 +164,7 @@ struct Read {
     inverted_fixed: usize,
     cells_split: usize,
     tets_from_split: usize,
+    points_added: usize,
 }
 
 fn from_vtk(read: vtk::VtkRead, format: &'static str) -> Read {
@@ -163,8 +173,13 @@ fn from_vtk(read: vtk::VtkRead, format: &'static str) -> Read {
         mesh: read.mesh,
         format,
         warnings: read.warnings,
-        cells_split: c.hexahedra + c.wedges + c.pyramids + c.voxels,
+        cells_split: c.hexahedra
+            + c.wedges
+            + c.pyramids
+            + c.voxels
+            + c.subdivided.iter().map(|s| s.cells).sum::<usize>(),
         tets_from_split: c.tets_from_split,
+        points_added: c.points_added,
         ..Read::default()
     }
 }
@@ -179,6 +194,7 @@ fn from_plot3d(read: Plot3dRead) -> Read {
         degenerate_dropped: read.degenerate_dropped,
         inverted_fixed: read.reoriented,
         cells_split: hexahedra,
+        points_added: 0,
     }
 }
 
@@ -197,6 +213,7 @@ fn finish(mut read: Read) -> Result<LoadedMesh, MeshError> {
             degenerate_dropped: read.degenerate_dropped,
             cells_split: read.cells_split,
             tets_from_split: read.tets_from_split,
+            points_added: read.points_added,
             validation,
         },
     })

@@ -6,11 +6,15 @@
 //! build topology: the mesh loader does that afterwards.
 //!
 //! Conventions of the readers:
-//! - tetra, voxel, hexahedron, wedge and pyramid cells are kept; the others
-//!   are split into tetrahedra conformingly (see `split.rs`); 0-, 1- and
-//!   2-D cells are skipped with a warning that counts them; other 3-D cells
-//!   (quadratic, higher order, polyhedra, prisms with 5 or 6 sides) are an
-//!   error naming the type and the cell;
+//! - tetra cells are kept; voxel, hexahedron, wedge and pyramid cells are
+//!   split into tetrahedra conformingly (see `split.rs`); quadratic and
+//!   order-2 Lagrange tetra, hexahedra, wedges and pyramids are subdivided
+//!   through their nodes (`split_quadratic.rs`; [`Linearize::Corners`]
+//!   keeps their corners only); polyhedra and pentagonal/hexagonal prisms
+//!   are split around a centroid (`polyhedron.rs`); the points these add
+//!   come after the file's, their fields interpolated; 0-, 1- and 2-D cells
+//!   are skipped with a warning that counts them; other 3-D cells (Bezier,
+//!   higher orders, ...) are an error naming the type and the cell;
 //! - a point array with one component becomes a field of its name; one with
 //!   several components (SCALARS with numComp > 1, VECTORS, multi-component
 //!   FIELD or DataArray) becomes its Euclidean magnitude `<name>_magnitude`;
@@ -19,6 +23,7 @@
 //! - values are converted to f32; NaN, infinities and values beyond f32's
 //!   range are errors.
 
+mod added_points;
 mod assemble;
 mod cells;
 mod error;
@@ -26,7 +31,9 @@ mod legacy_lex;
 mod legacy_read;
 mod legacy_write;
 mod numeric;
+mod polyhedron;
 mod split;
+mod split_quadratic;
 mod vtu_data;
 mod vtu_read;
 mod vtu_stream;
@@ -51,9 +58,41 @@ pub struct VtkRead {
     pub cells: CellCounts,
 }
 
+/// What to do with the mid-edge, face and body nodes of quadratic and
+/// Lagrange cells.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum Linearize {
+    /// Subdivide each cell into linear tetrahedra through all its nodes,
+    /// so the field values there are used.
+    #[default]
+    Subdivide,
+    /// Keep the corner nodes only (the linear cell), as VTK's unstructured
+    /// volume mappers do; the other nodes stay as unused points.
+    Corners,
+}
+
+/// Options of the `*_with` readers.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct ReadOptions {
+    pub linearize: Linearize,
+}
+
+/// Cells of one VTK type that were subdivided or split around a centroid.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SubdividedCells {
+    pub type_id: i64,
+    /// VTK's name of the type ("quadratic tetra").
+    pub name: &'static str,
+    pub cells: usize,
+    /// Tetrahedra they gave.
+    pub tets: usize,
+    /// Points added for them (computed face and body nodes, centroids).
+    pub points_added: usize,
+}
+
 /// How many cells of each kind were read, and how many tetrahedra the
 /// non-tetrahedral ones gave.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
 pub struct CellCounts {
     pub tetra: usize,
     pub hexahedra: usize,
@@ -63,8 +102,12 @@ pub struct CellCounts {
     /// Vertices, lines, triangles, quads, polygons...: not part of the
     /// volume, skipped.
     pub skipped_lower_dim: usize,
-    /// Tetrahedra made from hexahedra, wedges, pyramids and voxels.
+    /// Tetrahedra made from every cell that is not a linear tetra.
     pub tets_from_split: usize,
+    /// Higher-order cells, prisms and polyhedra, per type (by type id).
+    pub subdivided: Vec<SubdividedCells>,
+    /// Points added after the file's (the sum over `subdivided`).
+    pub points_added: usize,
 }
 
 /// How [`write_vtu`] stores its arrays.
@@ -89,21 +132,49 @@ fn read_path(path: &Path) -> Result<Vec<u8>, VtkError> {
 
 /// Reads a legacy `.vtk` file (UNSTRUCTURED_GRID, ASCII or BINARY).
 pub fn read_legacy_file(path: &Path) -> Result<VtkRead, VtkError> {
-    read_legacy_bytes(&read_path(path)?, &path.display().to_string())
+    read_legacy_file_with(path, &ReadOptions::default())
+}
+
+/// [`read_legacy_file`] with options.
+pub fn read_legacy_file_with(path: &Path, opts: &ReadOptions) -> Result<VtkRead, VtkError> {
+    read_legacy_bytes_with(&read_path(path)?, &path.display().to_string(), opts)
 }
 
 /// Reads a legacy VTK file held in memory; `name` is used in messages.
 pub fn read_legacy_bytes(bytes: &[u8], name: &str) -> Result<VtkRead, VtkError> {
-    legacy_read::read(bytes, name)
+    read_legacy_bytes_with(bytes, name, &ReadOptions::default())
+}
+
+/// [`read_legacy_bytes`] with options.
+pub fn read_legacy_bytes_with(
+    bytes: &[u8],
+    name: &str,
+    opts: &ReadOptions,
+) -> Result<VtkRead, VtkError> {
+    legacy_read::read_with(bytes, name, opts)
 }
 
 /// Reads an XML `.vtu` file (UnstructuredGrid; ascii, base64 or appended
 /// data, optionally zlib-compressed).
 pub fn read_vtu_file(path: &Path) -> Result<VtkRead, VtkError> {
-    read_vtu_bytes(&read_path(path)?, &path.display().to_string())
+    read_vtu_file_with(path, &ReadOptions::default())
+}
+
+/// [`read_vtu_file`] with options.
+pub fn read_vtu_file_with(path: &Path, opts: &ReadOptions) -> Result<VtkRead, VtkError> {
+    read_vtu_bytes_with(&read_path(path)?, &path.display().to_string(), opts)
 }
 
 /// Reads a `.vtu` file held in memory; `name` is used in messages.
 pub fn read_vtu_bytes(bytes: &[u8], name: &str) -> Result<VtkRead, VtkError> {
-    vtu_read::read(bytes, name)
+    read_vtu_bytes_with(bytes, name, &ReadOptions::default())
+}
+
+/// [`read_vtu_bytes`] with options.
+pub fn read_vtu_bytes_with(
+    bytes: &[u8],
+    name: &str,
+    opts: &ReadOptions,
+) -> Result<VtkRead, VtkError> {
+    vtu_read::read_with(bytes, name, opts)
 }

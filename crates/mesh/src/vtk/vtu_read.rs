@@ -1,14 +1,19 @@
 //! XML `.vtu` UnstructuredGrid reader: Pieces are decoded and concatenated
 //! into one raw grid.
 
-use super::assemble::{assemble, RawArray, RawGrid};
+use super::assemble::{assemble_with, RawArray, RawGrid};
 use super::numeric::Scalar;
+use super::polyhedron;
 use super::vtu_data::ArrayDecoder;
 use super::vtu_xml::{self, XmlArray, XmlPiece};
-use super::{VtkError, VtkRead};
+use super::{ReadOptions, VtkError, VtkRead};
 
 /// Parses a `.vtu` file held in memory; `name` is used in messages.
-pub(crate) fn read(bytes: &[u8], name: &str) -> Result<VtkRead, VtkError> {
+pub(crate) fn read_with(
+    bytes: &[u8],
+    name: &str,
+    opts: &ReadOptions,
+) -> Result<VtkRead, VtkError> {
     let doc = vtu_xml::parse(bytes, name)?;
     if doc.pieces.is_empty() {
         return Err(VtkError::Invalid {
@@ -44,7 +49,7 @@ pub(crate) fn read(bytes: &[u8], name: &str) -> Result<VtkRead, VtkError> {
     }
     grid.point_arrays = merge(point_arrays, &mut grid.warnings);
     grid.cell_arrays = merge(cell_arrays, &mut grid.warnings);
-    assemble(grid, name)
+    assemble_with(grid, name, opts)
 }
 
 fn piece_error(file: &str, piece: &XmlPiece, k: usize, message: String) -> VtkError {
@@ -206,7 +211,69 @@ fn read_cells(
         }
         begin = end;
     }
+    if types.contains(&42) {
+        read_polyhedra(d, piece, k, &types, points_before, cells_before, grid)?;
+    }
     grid.types.extend(types);
+    Ok(())
+}
+
+/// The faces of the piece's polyhedra (see `polyhedron.rs` for the two
+/// layouts), their point indices shifted like the connectivity's.
+fn read_polyhedra(
+    d: &ArrayDecoder<'_, '_>,
+    piece: &XmlPiece,
+    k: usize,
+    types: &[i64],
+    points_before: usize,
+    cells_before: usize,
+    grid: &mut RawGrid,
+) -> Result<(), VtkError> {
+    let array = |name: &str| -> Result<Option<Vec<i64>>, VtkError> {
+        let found = piece.cells.iter().find(|a| a.name.as_deref() == Some(name));
+        found
+            .map(|a| d.ints(a, &section(a, k, "Cells")))
+            .transpose()
+    };
+    let per_cell = if let (Some(faces), Some(offsets)) = (array("faces")?, array("faceoffsets")?) {
+        polyhedron::from_face_stream(&faces, &offsets, types)
+    } else if let (Some(fc), Some(fo), Some(pf), Some(po)) = (
+        array("face_connectivity")?,
+        array("face_offsets")?,
+        array("polyhedron_to_faces")?,
+        array("polyhedron_offsets")?,
+    ) {
+        polyhedron::from_face_tables(&fc, &fo, &pf, &po, types)
+    } else {
+        return Err(piece_error(
+            d.file,
+            piece,
+            k,
+            "polyhedra (type 42) but <Cells> has neither \"faces\" + \"faceoffsets\" nor \
+             \"face_connectivity\" + \"face_offsets\" + \"polyhedron_to_faces\" + \
+             \"polyhedron_offsets\""
+                .into(),
+        ));
+    };
+    let per_cell = per_cell.map_err(|(c, message)| VtkError::BadPolyhedron {
+        file: d.file.into(),
+        cell: cells_before + c,
+        message,
+    })?;
+    for (c, mut faces) in per_cell {
+        for index in faces.iter_mut().flatten() {
+            if *index < 0 || *index as u64 >= piece.npoints as u64 {
+                return Err(VtkError::BadIndex {
+                    file: d.file.into(),
+                    cell: cells_before + c,
+                    index: *index,
+                    npoints: piece.npoints,
+                });
+            }
+            *index += points_before as i64;
+        }
+        grid.polyhedron_faces.insert(cells_before + c, faces);
+    }
     Ok(())
 }
 
