@@ -83,6 +83,7 @@ pub fn load_mesh(args: &MeshArgs) -> anyhow::Result<MeshInput> {
             }
             let options = tetray_mesh::LoadOptions {
                 plot3d_q: args.q.clone(),
+                linearize: args.linearize.into(),
             };
             let loaded = tetray_mesh::load(path, &options)?;
             (path.display().to_string(), loaded)

@@ -397,6 +397,7 @@ fn load_dispatches_by_name() {
     // An explicit q that does not exist is an error naming it.
     let options = LoadOptions {
         plot3d_q: Some(dir.join("missing.q")),
+        ..LoadOptions::default()
     };
     assert!(
         matches!(load(&xyz, &options), Err(MeshError::Io { file, .. }) if file.contains("missing.q"))

@@ -114,7 +114,14 @@ fn hex_rotations() -> Vec<Vec<usize>> {
         let p = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]][c % 4];
         [2 * p[0] - 1, 2 * p[1] - 1, if c < 4 { -1 } else { 1 }]
     };
-    let perms = [[0, 1, 2], [1, 2, 0], [2, 0, 1], [0, 2, 1], [2, 1, 0], [1, 0, 2]];
+    let perms = [
+        [0, 1, 2],
+        [1, 2, 0],
+        [2, 0, 1],
+        [0, 2, 1],
+        [2, 1, 0],
+        [1, 0, 2],
+    ];
     let mut out = Vec::new();
     for (k, perm) in perms.iter().enumerate() {
         for signs in 0..8 {
@@ -179,10 +186,13 @@ impl Builder {
             .iter()
             .map(|mean| {
                 let n = mean.len() as i64;
-                let sum = mean.iter().fold([0i64; 3], |s, &c| {
-                    [0, 1, 2].map(|i| s[i] + rotated[c][i])
-                });
-                assert!(sum.iter().all(|v| v % n == 0), "positions must stay integer");
+                let sum = mean
+                    .iter()
+                    .fold([0i64; 3], |s, &c| [0, 1, 2].map(|i| s[i] + rotated[c][i]));
+                assert!(
+                    sum.iter().all(|v| v % n == 0),
+                    "positions must stay integer"
+                );
                 self.point(sum.map(|v| v / n))
             })
             .collect();
@@ -211,7 +221,10 @@ impl Builder {
         let size: usize = self.cells.iter().map(|(_, ids)| ids.len() + 1).sum();
         writeln!(s, "CELLS {} {size}", self.cells.len()).unwrap();
         for (_, ids) in &self.cells {
-            let ids: Vec<String> = ids.iter().map(|&i| new_id[i as usize].to_string()).collect();
+            let ids: Vec<String> = ids
+                .iter()
+                .map(|&i| new_id[i as usize].to_string())
+                .collect();
             writeln!(s, "{} {}", ids.len(), ids.join(" ")).unwrap();
         }
         writeln!(s, "CELL_TYPES {}", self.cells.len()).unwrap();
@@ -240,8 +253,17 @@ fn field(x: f64, y: f64, z: f64) -> f64 {
 /// the cube centre is integer too).
 fn cube(i: i64, j: i64, k: i64) -> [[i64; 3]; 8] {
     let u = 2 * SCALE;
-    [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]]
-        .map(|[a, b, c]| [(i + a) * u, (j + b) * u, (k + c) * u])
+    [
+        [0, 0, 0],
+        [1, 0, 0],
+        [1, 1, 0],
+        [0, 1, 0],
+        [0, 0, 1],
+        [1, 0, 1],
+        [1, 1, 1],
+        [0, 1, 1],
+    ]
+    .map(|[a, b, c]| [(i + a) * u, (j + b) * u, (k + c) * u])
 }
 
 fn cubes() -> impl Iterator<Item = [[i64; 3]; 8]> {
@@ -262,7 +284,14 @@ fn build(t: &CellType, rng: &mut Lcg) -> Builder {
         match t.nodes.len() {
             10 => {
                 // Kuhn's 6 tets per cube, conforming across cubes.
-                for perm in [[0, 1, 2], [0, 2, 1], [1, 0, 2], [1, 2, 0], [2, 0, 1], [2, 1, 0]] {
+                for perm in [
+                    [0, 1, 2],
+                    [0, 2, 1],
+                    [1, 0, 2],
+                    [1, 2, 0],
+                    [2, 0, 1],
+                    [2, 1, 0],
+                ] {
                     let mut p = c[0];
                     let mut tet = vec![p];
                     for axis in perm {
@@ -277,7 +306,10 @@ fn build(t: &CellType, rng: &mut Lcg) -> Builder {
             }
             15 | 18 => {
                 for tri in [[0, 1, 2], [0, 2, 3]] {
-                    let w: Vec<[i64; 3]> = tri.iter().chain(&tri).enumerate()
+                    let w: Vec<[i64; 3]> = tri
+                        .iter()
+                        .chain(&tri)
+                        .enumerate()
                         .map(|(n, &v)| c[v + if n < 3 { 0 } else { 4 }])
                         .collect();
                     b.cell(t, &t.nodes, &w, rng);
@@ -307,15 +339,51 @@ fn types() -> Vec<CellType> {
         e
     };
     vec![
-        CellType { id: 24, nodes: nodes(4, &TET_EDGES, &[], false), rotations: tet_rotations() },
-        CellType { id: 71, nodes: nodes(4, &TET_EDGES, &[], false), rotations: tet_rotations() },
-        CellType { id: 25, nodes: nodes(8, &HEX_EDGES, &[], false), rotations: hex_rotations() },
-        CellType { id: 29, nodes: nodes(8, &HEX_EDGES, &HEX_FACES, true), rotations: hex_rotations() },
-        CellType { id: 72, nodes: nodes(8, &hex72_edges, &HEX_FACES, true), rotations: hex_rotations() },
-        CellType { id: 26, nodes: nodes(6, &WEDGE_EDGES, &[], false), rotations: wedge_rotations() },
-        CellType { id: 32, nodes: nodes(6, &WEDGE_EDGES, &WEDGE_FACES, false), rotations: wedge_rotations() },
-        CellType { id: 73, nodes: nodes(6, &WEDGE_EDGES, &WEDGE_FACES, false), rotations: wedge_rotations() },
-        CellType { id: 27, nodes: nodes(5, &PYRAMID_EDGES, &[], false), rotations: pyramid_rotations() },
+        CellType {
+            id: 24,
+            nodes: nodes(4, &TET_EDGES, &[], false),
+            rotations: tet_rotations(),
+        },
+        CellType {
+            id: 71,
+            nodes: nodes(4, &TET_EDGES, &[], false),
+            rotations: tet_rotations(),
+        },
+        CellType {
+            id: 25,
+            nodes: nodes(8, &HEX_EDGES, &[], false),
+            rotations: hex_rotations(),
+        },
+        CellType {
+            id: 29,
+            nodes: nodes(8, &HEX_EDGES, &HEX_FACES, true),
+            rotations: hex_rotations(),
+        },
+        CellType {
+            id: 72,
+            nodes: nodes(8, &hex72_edges, &HEX_FACES, true),
+            rotations: hex_rotations(),
+        },
+        CellType {
+            id: 26,
+            nodes: nodes(6, &WEDGE_EDGES, &[], false),
+            rotations: wedge_rotations(),
+        },
+        CellType {
+            id: 32,
+            nodes: nodes(6, &WEDGE_EDGES, &WEDGE_FACES, false),
+            rotations: wedge_rotations(),
+        },
+        CellType {
+            id: 73,
+            nodes: nodes(6, &WEDGE_EDGES, &WEDGE_FACES, false),
+            rotations: wedge_rotations(),
+        },
+        CellType {
+            id: 27,
+            nodes: nodes(5, &PYRAMID_EDGES, &[], false),
+            rotations: pyramid_rotations(),
+        },
     ]
 }
 
@@ -327,14 +395,18 @@ fn every_higher_order_type_splits_conformingly_in_every_orientation() {
             let b = build(&t, &mut rng);
             let text = b.legacy(&mut rng);
             let context = format!("type {} seed {seed}", t.id);
-            let read = read_legacy_bytes(text.as_bytes(), "cells.vtk").unwrap_or_else(|e| panic!("{context}: {e}"));
+            let read = read_legacy_bytes(text.as_bytes(), "cells.vtk")
+                .unwrap_or_else(|e| panic!("{context}: {e}"));
             let mesh = read.mesh;
 
             // Every triangle in at most two tets; the boundary triangles lie
             // on the box's faces (a non-conforming shared face would leave
             // its triangles inside the box).
             let faces = face_counts(&mesh.tets);
-            assert!(faces.values().all(|&n| n <= 2), "{context}: a triangle in 3 tets");
+            assert!(
+                faces.values().all(|&n| n <= 2),
+                "{context}: a triangle in 3 tets"
+            );
             let side = (CUBES * 2) as f32;
             let on_box_face = |f: &[u32; 3]| {
                 (0..3).any(|axis| {
@@ -342,14 +414,28 @@ fn every_higher_order_type_splits_conformingly_in_every_orientation() {
                     c.iter().all(|&v| v == 0.0) || c.iter().all(|&v| v == side)
                 })
             };
-            let boundary: Vec<_> = faces.iter().filter(|&(_, &n)| n == 1).map(|(f, _)| *f).collect();
-            assert!(boundary.iter().all(on_box_face), "{context}: a boundary triangle inside the box");
+            let boundary: Vec<_> = faces
+                .iter()
+                .filter(|&(_, &n)| n == 1)
+                .map(|(f, _)| *f)
+                .collect();
+            assert!(
+                boundary.iter().all(on_box_face),
+                "{context}: a boundary triangle inside the box"
+            );
 
             // The tets fill the box once: volumes (exact in f32 here) sum to
             // the box's, within 1e-9 relative for the f64 summation.
-            let total: f64 = mesh.tets.iter().map(|&t| volume6(&mesh, t).abs() / 6.0).sum();
+            let total: f64 = mesh
+                .tets
+                .iter()
+                .map(|&t| volume6(&mesh, t).abs() / 6.0)
+                .sum();
             let box_volume = (side as f64).powi(3);
-            assert!((total - box_volume).abs() <= 1e-9 * box_volume, "{context}: volume {total}");
+            assert!(
+                (total - box_volume).abs() <= 1e-9 * box_volume,
+                "{context}: volume {total}"
+            );
 
             // Added points carry the linear field exactly (serendipity and
             // Lagrange interpolation reproduce linear functions); 1e-5
@@ -357,7 +443,10 @@ fn every_higher_order_type_splits_conformingly_in_every_orientation() {
             assert_eq!(mesh.fields.len(), 1);
             for (p, &v) in mesh.points.iter().zip(&mesh.fields[0].values) {
                 let want = field(p.x as f64, p.y as f64, p.z as f64);
-                assert!((v as f64 - want).abs() <= 1e-5 * (1.0 + want.abs()), "{context}: f at {p} is {v}, not {want}");
+                assert!(
+                    (v as f64 - want).abs() <= 1e-5 * (1.0 + want.abs()),
+                    "{context}: f at {p} is {v}, not {want}"
+                );
             }
 
             // Validation (orientation, overlap, conformity) passes.
@@ -380,7 +469,15 @@ fn added_points_are_shared_face_centres_and_body_centres() {
     // vertical cube faces and the 8 diagonal quads cutting the cubes; the
     // pyramid (6 per cube, apex at the centre) its 36 bases. Each shared
     // face gets one point, not one per cell.
-    let expected = [(25, 44), (29, 0), (72, 0), (24, 0), (26, 24 + 8), (32, 0), (27, 36)];
+    let expected = [
+        (25, 44),
+        (29, 0),
+        (72, 0),
+        (24, 0),
+        (26, 24 + 8),
+        (32, 0),
+        (27, 36),
+    ];
     for t in types() {
         let Some(&(_, added)) = expected.iter().find(|(id, _)| *id == t.id) else {
             continue;
@@ -389,7 +486,11 @@ fn added_points_are_shared_face_centres_and_body_centres() {
         let text = build(&t, &mut rng).legacy(&mut rng);
         let read = read_legacy_bytes(text.as_bytes(), "cells.vtk").unwrap();
         assert_eq!(read.cells.points_added, added, "type {}", t.id);
-        assert_eq!(read.cells.subdivided[0].points_added, added, "type {}", t.id);
+        assert_eq!(
+            read.cells.subdivided[0].points_added, added,
+            "type {}",
+            t.id
+        );
     }
 }
 
@@ -399,14 +500,31 @@ fn corners_mode_keeps_the_linear_cells() {
         let mut rng = Lcg(7 + t.id as u64);
         let b = build(&t, &mut rng);
         let text = b.legacy(&mut rng);
-        let opts = ReadOptions { linearize: Linearize::Corners };
+        let opts = ReadOptions {
+            linearize: Linearize::Corners,
+        };
         let read = read_legacy_bytes_with(text.as_bytes(), "cells.vtk", &opts).unwrap();
         assert_eq!(read.cells.points_added, 0, "type {}", t.id);
         let corners = t.rotations[0].len();
-        let used: std::collections::HashSet<u32> = read.mesh.tets.iter().flatten().copied().collect();
-        let corner_ids: std::collections::HashSet<u32> = b.cells.iter().flat_map(|(_, ids)| ids[..corners].to_vec()).collect();
-        assert_eq!(used.len(), corner_ids.len(), "type {}: only corners used", t.id);
-        let total: f64 = read.mesh.tets.iter().map(|&tet| volume6(&read.mesh, tet).abs() / 6.0).sum();
+        let used: std::collections::HashSet<u32> =
+            read.mesh.tets.iter().flatten().copied().collect();
+        let corner_ids: std::collections::HashSet<u32> = b
+            .cells
+            .iter()
+            .flat_map(|(_, ids)| ids[..corners].to_vec())
+            .collect();
+        assert_eq!(
+            used.len(),
+            corner_ids.len(),
+            "type {}: only corners used",
+            t.id
+        );
+        let total: f64 = read
+            .mesh
+            .tets
+            .iter()
+            .map(|&tet| volume6(&read.mesh, tet).abs() / 6.0)
+            .sum();
         assert!((total - 64.0).abs() < 1e-9 * 64.0, "type {}: {total}", t.id);
         tetray_mesh::prepare(read.mesh).unwrap();
     }

@@ -38,7 +38,12 @@ fn legacy(points: &[[f64; 3]], cells: &[(i64, Vec<i64>)]) -> String {
     for (t, _) in cells {
         writeln!(s, "{t}").unwrap();
     }
-    writeln!(s, "POINT_DATA {}\nSCALARS f double\nLOOKUP_TABLE default", points.len()).unwrap();
+    writeln!(
+        s,
+        "POINT_DATA {}\nSCALARS f double\nLOOKUP_TABLE default",
+        points.len()
+    )
+    .unwrap();
     for p in points {
         writeln!(s, "{}", p[0] + 2.0 * p[1] + 3.0 * p[2]).unwrap();
     }
@@ -55,10 +60,13 @@ fn stream(faces: &[Vec<i64>]) -> Vec<i64> {
     s
 }
 
+/// A cell: VTK type, point ids, faces (polyhedra only).
+type Cell = (i64, Vec<i64>, Vec<Vec<i64>>);
+
 /// A 2x2x2 block of unit cubes, alternately linear hexahedra and cube
 /// polyhedra whose faces come in a random order, each from a random start
 /// vertex; point ids shuffled. Returns points and (type, ids, faces).
-fn checkerboard(rng: &mut Lcg) -> (Vec<[f64; 3]>, Vec<(i64, Vec<i64>, Vec<Vec<i64>>)>) {
+fn checkerboard(rng: &mut Lcg) -> (Vec<[f64; 3]>, Vec<Cell>) {
     let mut order: Vec<i64> = (0..27).collect();
     for i in (1..27).rev() {
         order.swap(i, rng.below(i as u32 + 1) as usize);
@@ -74,8 +82,20 @@ fn checkerboard(rng: &mut Lcg) -> (Vec<[f64; 3]>, Vec<(i64, Vec<i64>, Vec<Vec<i6
     }
     let mut cells = Vec::new();
     for (x, y, z) in (0..8).map(|c| (c & 1, c >> 1 & 1, c >> 2)) {
-        let corner = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]];
-        let ids: Vec<i64> = corner.iter().map(|c| id(x + c[0], y + c[1], z + c[2])).collect();
+        let corner = [
+            [0, 0, 0],
+            [1, 0, 0],
+            [1, 1, 0],
+            [0, 1, 0],
+            [0, 0, 1],
+            [1, 0, 1],
+            [1, 1, 1],
+            [0, 1, 1],
+        ];
+        let ids: Vec<i64> = corner
+            .iter()
+            .map(|c| id(x + c[0], y + c[1], z + c[2]))
+            .collect();
         if (x + y + z) % 2 == 0 {
             cells.push((12, ids, Vec::new()));
             continue;
@@ -108,9 +128,16 @@ fn check_conforming(read: VtkRead, lo: [f32; 3], hi: [f32; 3], volume: f64, cont
         });
         assert!(on_face, "{context}: boundary triangle {f:?} inside the box");
     }
-    let total: f64 = mesh.tets.iter().map(|&t| volume6(&mesh, t).abs() / 6.0).sum();
+    let total: f64 = mesh
+        .tets
+        .iter()
+        .map(|&t| volume6(&mesh, t).abs() / 6.0)
+        .sum();
     // 1e-6 relative: f32 coordinates of the prisms' rings, summed in f64.
-    assert!((total - volume).abs() <= 1e-6 * volume, "{context}: {total} vs {volume}");
+    assert!(
+        (total - volume).abs() <= 1e-6 * volume,
+        "{context}: {total} vs {volume}"
+    );
     tetray_mesh::prepare(mesh).unwrap_or_else(|e| panic!("{context}: {e}"));
 }
 
@@ -126,7 +153,15 @@ fn polyhedra_and_hexahedra_conform_in_every_face_order() {
         let read = read_legacy_bytes(legacy(&points, &entries).as_bytes(), "p.vtk").unwrap();
         assert_eq!(read.cells.hexahedra, 4);
         let sub = &read.cells.subdivided;
-        assert_eq!((sub[0].type_id, sub[0].cells, sub[0].tets, sub[0].points_added), (42, 4, 48, 4));
+        assert_eq!(
+            (
+                sub[0].type_id,
+                sub[0].cells,
+                sub[0].tets,
+                sub[0].points_added
+            ),
+            (42, 4, 48, 4)
+        );
         // The centroid's field is the mean of its vertices': for the linear
         // field f = x + 2y + 3z, f at the centroid (exact in f32 here).
         let f = &read.mesh.fields[0].values;
@@ -139,18 +174,31 @@ fn polyhedra_and_hexahedra_conform_in_every_face_order() {
 
 /// The checkerboard as a .vtu: `faces` + `faceoffsets` (VTK before 9.4) or
 /// the VTK 9.4 face tables.
-fn vtu(points: &[[f64; 3]], cells: &[(i64, Vec<i64>, Vec<Vec<i64>>)], tables: bool) -> String {
+fn vtu(points: &[[f64; 3]], cells: &[Cell], tables: bool) -> String {
     let join = |v: &[i64]| v.iter().map(i64::to_string).collect::<Vec<_>>().join(" ");
     let array = |name: &str, v: &[i64]| {
-        format!("<DataArray type=\"Int64\" Name=\"{name}\" format=\"ascii\">{}</DataArray>\n", join(v))
+        format!(
+            "<DataArray type=\"Int64\" Name=\"{name}\" format=\"ascii\">{}</DataArray>\n",
+            join(v)
+        )
     };
-    let coords: Vec<String> = points.iter().map(|p| format!("{} {} {}", p[0], p[1], p[2])).collect();
+    let coords: Vec<String> = points
+        .iter()
+        .map(|p| format!("{} {} {}", p[0], p[1], p[2]))
+        .collect();
     let connectivity: Vec<i64> = cells.iter().flat_map(|c| c.1.clone()).collect();
-    let offsets: Vec<i64> = cells.iter().scan(0, |end, c| { *end += c.1.len() as i64; Some(*end) }).collect();
+    let offsets: Vec<i64> = cells
+        .iter()
+        .scan(0, |end, c| {
+            *end += c.1.len() as i64;
+            Some(*end)
+        })
+        .collect();
     let types: Vec<i64> = cells.iter().map(|c| c.0).collect();
     let mut face_arrays = String::new();
     if tables {
-        let (mut conn, mut face_ends, mut to_faces, mut poly_ends) = (vec![], vec![], vec![], vec![]);
+        let (mut conn, mut face_ends, mut to_faces, mut poly_ends) =
+            (vec![], vec![], vec![], vec![]);
         for (_, _, faces) in cells {
             for f in faces {
                 to_faces.push(face_ends.len() as i64);
@@ -251,7 +299,11 @@ fn prism_stacks_share_their_polygon_faces() {
     for n in [5, 6] {
         for seed in 0..10 {
             let layers = 3;
-            let read = read_legacy_bytes(prism_stack(n, layers, &mut Lcg(seed)).as_bytes(), "prisms.vtk").unwrap();
+            let read = read_legacy_bytes(
+                prism_stack(n, layers, &mut Lcg(seed)).as_bytes(),
+                "prisms.vtk",
+            )
+            .unwrap();
             let context = format!("{n}-gon seed {seed}");
             // A centroid per cell and one per distinct n-gon (layers + 1).
             assert_eq!(read.cells.points_added, layers + layers + 1, "{context}");
@@ -263,9 +315,17 @@ fn prism_stacks_share_their_polygon_faces() {
             // The sides are not axis-aligned: the boundary count above, no
             // triangle in three tets, and the volume stand for the box test.
             assert!(faces.values().all(|&c| c <= 2), "{context}");
-            let total: f64 = read.mesh.tets.iter().map(|&t| volume6(&read.mesh, t).abs() / 6.0).sum();
+            let total: f64 = read
+                .mesh
+                .tets
+                .iter()
+                .map(|&t| volume6(&read.mesh, t).abs() / 6.0)
+                .sum();
             let volume = area * layers as f64;
-            assert!((total - volume).abs() <= 1e-6 * volume, "{context}: {total} vs {volume}");
+            assert!(
+                (total - volume).abs() <= 1e-6 * volume,
+                "{context}: {total} vs {volume}"
+            );
             tetray_mesh::prepare(read.mesh).unwrap_or_else(|e| panic!("{context}: {e}"));
         }
     }
@@ -280,14 +340,26 @@ fn legacy_error(cells: &[(i64, Vec<i64>)]) -> VtkError {
 
 /// The unit cube on points x + 2y + 4z, faces outward.
 fn cube_faces() -> Vec<Vec<i64>> {
-    vec![vec![0, 2, 3, 1], vec![4, 5, 7, 6], vec![0, 1, 5, 4], vec![1, 3, 7, 5], vec![3, 2, 6, 7], vec![2, 0, 4, 6]]
+    vec![
+        vec![0, 2, 3, 1],
+        vec![4, 5, 7, 6],
+        vec![0, 1, 5, 4],
+        vec![1, 3, 7, 5],
+        vec![3, 2, 6, 7],
+        vec![2, 0, 4, 6],
+    ]
 }
 
 #[test]
 fn malformed_cells_are_one_clear_error() {
     // A quadratic tetra with 9 nodes.
     let e = legacy_error(&[(24, (0..9).map(|i| i % 8).collect())]).to_string();
-    assert!(e.contains("cell 0") && e.contains("quadratic tetra") && e.contains("has 10 points, found 9"), "{e}");
+    assert!(
+        e.contains("cell 0")
+            && e.contains("quadratic tetra")
+            && e.contains("has 10 points, found 9"),
+        "{e}"
+    );
     // A triquadratic hexahedron with 20 nodes.
     let e = legacy_error(&[(29, (0..20).map(|i| i % 8).collect())]).to_string();
     assert!(e.contains("has 27 points, found 20"), "{e}");
@@ -296,17 +368,33 @@ fn malformed_cells_are_one_clear_error() {
     let mut open = cube_faces();
     open.remove(1);
     let e = legacy_error(&[(10, vec![0, 1, 2, 4]), (42, stream(&open))]).to_string();
-    assert!(e.contains("cell 1: polyhedron: the faces do not close: edge"), "{e}");
+    assert!(
+        e.contains("cell 1: polyhedron: the faces do not close: edge"),
+        "{e}"
+    );
     // One face turned inside out.
     let mut flipped = cube_faces();
     flipped[3].reverse();
     let e = legacy_error(&[(42, stream(&flipped))]).to_string();
-    assert!(e.contains("cell 0: polyhedron: the face orientations disagree"), "{e}");
+    assert!(
+        e.contains("cell 0: polyhedron: the face orientations disagree"),
+        "{e}"
+    );
     // A point index out of range in a face.
     let mut far = cube_faces();
     far[0][2] = 99;
     let e = legacy_error(&[(42, stream(&far))]);
-    assert!(matches!(e, VtkError::BadIndex { cell: 0, index: 99, .. }), "{e}");
+    assert!(
+        matches!(
+            e,
+            VtkError::BadIndex {
+                cell: 0,
+                index: 99,
+                ..
+            }
+        ),
+        "{e}"
+    );
     // A face stream that claims more than it has.
     let mut s = stream(&cube_faces());
     s[0] = 7;
@@ -316,13 +404,33 @@ fn malformed_cells_are_one_clear_error() {
     // VTK 9.4 tables: a polyhedron naming a face that does not exist.
     let (points, cells) = checkerboard(&mut Lcg(3));
     let text = vtu(&points, &cells, true);
-    let bad = text.replacen("Name=\"polyhedron_to_faces\" format=\"ascii\">0 ", "Name=\"polyhedron_to_faces\" format=\"ascii\">40 ", 1);
+    let bad = text.replacen(
+        "Name=\"polyhedron_to_faces\" format=\"ascii\">0 ",
+        "Name=\"polyhedron_to_faces\" format=\"ascii\">40 ",
+        1,
+    );
     assert_ne!(bad, text);
-    let e = read_vtu_bytes(bad.as_bytes(), "bad.vtu").unwrap_err().to_string();
-    assert!(e.contains("polyhedron: face index 40 is out of range (there are 24 faces)"), "{e}");
+    let e = read_vtu_bytes(bad.as_bytes(), "bad.vtu")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("polyhedron: face index 40 is out of range (there are 24 faces)"),
+        "{e}"
+    );
     // A polyhedron without any face arrays.
-    let start = text.find("<DataArray type=\"Int64\" Name=\"face_connectivity\"").unwrap();
-    let bare = format!("{}</Cells>{}", &text[..start], &text[text.find("</Cells>").unwrap() + 8..]);
-    let e = read_vtu_bytes(bare.as_bytes(), "bare.vtu").unwrap_err().to_string();
-    assert!(e.contains("polyhedra (type 42) but <Cells> has neither"), "{e}");
+    let start = text
+        .find("<DataArray type=\"Int64\" Name=\"face_connectivity\"")
+        .unwrap();
+    let bare = format!(
+        "{}</Cells>{}",
+        &text[..start],
+        &text[text.find("</Cells>").unwrap() + 8..]
+    );
+    let e = read_vtu_bytes(bare.as_bytes(), "bare.vtu")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("polyhedra (type 42) but <Cells> has neither"),
+        "{e}"
+    );
 }

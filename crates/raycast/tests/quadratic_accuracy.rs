@@ -94,7 +94,11 @@ fn quadratic_box() -> String {
     );
     let xyz = |i: usize| {
         let h = 1.0 / (n - 1) as f64;
-        DVec3::new((i % n) as f64 * h, (i / n % n) as f64 * h, (i / (n * n)) as f64 * h)
+        DVec3::new(
+            (i % n) as f64 * h,
+            (i / n % n) as f64 * h,
+            (i / (n * n)) as f64 * h,
+        )
     };
     for i in 0..n * n * n {
         let p = xyz(i);
@@ -103,7 +107,14 @@ fn quadratic_box() -> String {
     let mut cells = Vec::new();
     for c in 0..CUBES * CUBES * CUBES {
         let origin = [c % CUBES, c / CUBES % CUBES, c / (CUBES * CUBES)].map(|v| 2 * v);
-        for perm in [[0, 1, 2], [0, 2, 1], [1, 0, 2], [1, 2, 0], [2, 0, 1], [2, 1, 0]] {
+        for perm in [
+            [0, 1, 2],
+            [0, 2, 1],
+            [1, 0, 2],
+            [1, 2, 0],
+            [2, 0, 1],
+            [2, 1, 0],
+        ] {
             let mut corners = vec![origin];
             for axis in perm {
                 let mut p = *corners.last().unwrap();
@@ -115,9 +126,7 @@ fn quadratic_box() -> String {
             if odd {
                 corners.swap(2, 3);
             }
-            let mid = |a: usize, b: usize| {
-                [0, 1, 2].map(|i| (corners[a][i] + corners[b][i]) / 2)
-            };
+            let mid = |a: usize, b: usize| [0, 1, 2].map(|i| (corners[a][i] + corners[b][i]) / 2);
             let mut ids: Vec<usize> = corners.iter().map(|&p| id(p)).collect();
             for [a, b] in [[0, 1], [1, 2], [2, 0], [0, 3], [1, 3], [2, 3]] {
                 ids.push(id(mid(a, b)));
@@ -132,7 +141,12 @@ fn quadratic_box() -> String {
     }
     writeln!(s, "CELL_TYPES {}", cells.len()).unwrap();
     s.push_str(&"24\n".repeat(cells.len()));
-    writeln!(s, "POINT_DATA {}\nSCALARS q double\nLOOKUP_TABLE default", n * n * n).unwrap();
+    writeln!(
+        s,
+        "POINT_DATA {}\nSCALARS q double\nLOOKUP_TABLE default",
+        n * n * n
+    )
+    .unwrap();
     for i in 0..n * n * n {
         writeln!(s, "{}", field(xyz(i))).unwrap();
     }
@@ -152,7 +166,11 @@ fn mean_error(image: &Image, expected: &Expected) -> f64 {
         .rgba
         .iter()
         .zip(expected)
-        .map(|(a, e)| (0..4).map(|c| (f64::from(a[c]) - e[c]).abs()).fold(0.0, f64::max))
+        .map(|(a, e)| {
+            (0..4)
+                .map(|c| (f64::from(a[c]) - e[c]).abs())
+                .fold(0.0, f64::max)
+        })
         .sum();
     sum / expected.len() as f64
 }

@@ -40,11 +40,7 @@ impl AddedPoints {
     }
 
     /// The point for `key`, made with the weights of `make` the first time.
-    pub(crate) fn shared(
-        &mut self,
-        key: PointKey,
-        make: impl FnOnce() -> Vec<(u32, f64)>,
-    ) -> u32 {
+    pub(crate) fn shared(&mut self, key: PointKey, make: impl FnOnce() -> Vec<(u32, f64)>) -> u32 {
         if let Some(&id) = self.shared.get(&key) {
             return id;
         }

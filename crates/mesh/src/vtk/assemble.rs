@@ -64,7 +64,13 @@ pub(crate) fn assemble_with(
     }
     separate_inline_faces(&mut grid, file)?;
     let mut warnings = std::mem::take(&mut grid.warnings);
-    let cells = CellTable::new(&grid.offsets, &grid.connectivity, grid.types.len(), npoints, file)?;
+    let cells = CellTable::new(
+        &grid.offsets,
+        &grid.connectivity,
+        grid.types.len(),
+        npoints,
+        file,
+    )?;
 
     let mut tets = Vec::new();
     let mut added = AddedPoints::new(npoints);

@@ -61,11 +61,7 @@ struct Parser<'a> {
 }
 
 /// Parses a legacy VTK file held in memory; `name` is used in messages.
-pub(crate) fn read_with(
-    bytes: &[u8],
-    name: &str,
-    opts: &ReadOptions,
-) -> Result<VtkRead, VtkError> {
+pub(crate) fn read_with(bytes: &[u8], name: &str, opts: &ReadOptions) -> Result<VtkRead, VtkError> {
     let mut p = Parser {
         cur: Cursor::new(bytes, name),
         grid: RawGrid::default(),

@@ -30,6 +30,12 @@ use super::added_points::{mean_of, AddedPoints};
 /// Faces of the polyhedra of a grid, by cell index; point ids are global.
 pub(crate) type PolyhedronFaces = HashMap<usize, Vec<Vec<i64>>>;
 
+/// The faces of each polyhedron of a piece, by cell index in the piece.
+pub(crate) type PieceFaces = Vec<(usize, Vec<Vec<i64>>)>;
+
+/// The piece's cell index at fault and what is wrong.
+pub(crate) type FaceError = (usize, String);
+
 /// Parses one cell's face stream `nfaces, (npts, id...)*`, which must be
 /// used up exactly.
 pub(crate) fn parse_face_stream(stream: &[i64]) -> Result<Vec<Vec<i64>>, String> {
@@ -68,7 +74,7 @@ pub(crate) fn from_face_stream(
     faces: &[i64],
     faceoffsets: &[i64],
     types: &[i64],
-) -> Result<Vec<(usize, Vec<Vec<i64>>)>, (usize, String)> {
+) -> Result<PieceFaces, FaceError> {
     if faceoffsets.len() != types.len() {
         return Err((
             faceoffsets.len().min(types.len()),
@@ -99,7 +105,10 @@ pub(crate) fn from_face_stream(
             ));
         }
         if type_id == 42 {
-            out.push((c, parse_face_stream(&faces[start..end]).map_err(|e| (c, e))?));
+            out.push((
+                c,
+                parse_face_stream(&faces[start..end]).map_err(|e| (c, e))?,
+            ));
         }
         start = end;
     }
@@ -113,10 +122,13 @@ pub(crate) fn from_face_tables(
     polyhedron_to_faces: &[i64],
     polyhedron_offsets: &[i64],
     types: &[i64],
-) -> Result<Vec<(usize, Vec<Vec<i64>>)>, (usize, String)> {
+) -> Result<PieceFaces, FaceError> {
     let range = |offsets: &[i64], i: usize, len: usize| -> Option<(usize, usize)> {
         let start = if i == 0 { 0 } else { offsets[i - 1] };
-        let (start, end) = (usize::try_from(start).ok()?, usize::try_from(offsets[i]).ok()?);
+        let (start, end) = (
+            usize::try_from(start).ok()?,
+            usize::try_from(offsets[i]).ok()?,
+        );
         (start <= end && end <= len).then_some((start, end))
     };
     if polyhedron_offsets.len() != types.len() {

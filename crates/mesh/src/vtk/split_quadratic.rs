@@ -113,24 +113,31 @@ const WEDGE18_NODES: [[u8; 3]; 18] = [
     [0, 1, 1],
 ];
 
-/// The quad faces of the wedge lattice: corners in cyclic order, the
-/// mid-edge nodes between them, the centre.
-const WEDGE_QUADS: [([[u8; 3]; 4], [[u8; 3]; 4], [u8; 3]); 3] = [
-    (
-        [[0, 0, 0], [2, 0, 0], [2, 0, 2], [0, 0, 2]],
-        [[1, 0, 0], [2, 0, 1], [1, 0, 2], [0, 0, 1]],
-        [1, 0, 1],
-    ),
-    (
-        [[2, 0, 0], [0, 2, 0], [0, 2, 2], [2, 0, 2]],
-        [[1, 1, 0], [0, 2, 1], [1, 1, 2], [2, 0, 1]],
-        [1, 1, 1],
-    ),
-    (
-        [[0, 2, 0], [0, 0, 0], [0, 0, 2], [0, 2, 2]],
-        [[0, 1, 0], [0, 0, 1], [0, 1, 2], [0, 2, 1]],
-        [0, 1, 1],
-    ),
+/// A quad face of a lattice: corners in cyclic order, the mid-edge nodes
+/// between them (`mids[c]` on edge c, c+1), the centre.
+struct LatticeQuad {
+    corners: [[u8; 3]; 4],
+    mids: [[u8; 3]; 4],
+    centre: [u8; 3],
+}
+
+/// The quad faces of the wedge lattice.
+const WEDGE_QUADS: [LatticeQuad; 3] = [
+    LatticeQuad {
+        corners: [[0, 0, 0], [2, 0, 0], [2, 0, 2], [0, 0, 2]],
+        mids: [[1, 0, 0], [2, 0, 1], [1, 0, 2], [0, 0, 1]],
+        centre: [1, 0, 1],
+    },
+    LatticeQuad {
+        corners: [[2, 0, 0], [0, 2, 0], [0, 2, 2], [2, 0, 2]],
+        mids: [[1, 1, 0], [0, 2, 1], [1, 1, 2], [2, 0, 1]],
+        centre: [1, 1, 1],
+    },
+    LatticeQuad {
+        corners: [[0, 2, 0], [0, 0, 0], [0, 0, 2], [0, 2, 2]],
+        mids: [[0, 1, 0], [0, 0, 1], [0, 1, 2], [0, 2, 1]],
+        centre: [0, 1, 1],
+    },
 ];
 
 /// The 4 triangles of the refined 6-node triangle, as (i, j), all
@@ -215,15 +222,17 @@ fn tetra(ids: &[u32], s: &mut Subdivision) {
     }
     let length2 = |[a, b]: [usize; 2]| -> f64 {
         let (p, q) = (ids[a] as usize * 3, ids[b] as usize * 3);
-        (0..3).map(|i| (s.points[p + i] - s.points[q + i]).powi(2)).sum()
+        (0..3)
+            .map(|i| (s.points[p + i] - s.points[q + i]).powi(2))
+            .sum()
     };
-    let mut best = 0;
-    for d in 1..3 {
-        if length2(TET10_DIAGONALS[d].0) < length2(TET10_DIAGONALS[best].0) {
-            best = d;
-        }
-    }
-    let ([a, b], ring) = TET10_DIAGONALS[best];
+    // The shortest diagonal (the first on ties) gives the best-shaped tets.
+    let shortest = TET10_DIAGONALS
+        .iter()
+        .min_by(|p, q| length2(p.0).total_cmp(&length2(q.0)));
+    let Some(&([a, b], ring)) = shortest else {
+        return;
+    };
     for r in 0..4 {
         s.tet(ids, [a, b, ring[r], ring[(r + 1) % 4]], &reference);
     }
@@ -299,10 +308,10 @@ fn hexahedron(ids: &[u32], nodes: &[[u8; 3]], s: &mut Subdivision) {
 
 fn wedge(ids: &[u32], nodes: &[[u8; 3]], s: &mut Subdivision) {
     let mut l = lattice(ids, nodes);
-    for (corners, mids, centre) in WEDGE_QUADS {
-        if l[at(centre)] == u32::MAX {
-            let (c, m) = (corners.map(|p| l[at(p)]), mids.map(|p| l[at(p)]));
-            l[at(centre)] = quad_centre(c, m, s.added);
+    for q in &WEDGE_QUADS {
+        if l[at(q.centre)] == u32::MAX {
+            let (c, m) = (q.corners.map(|p| l[at(p)]), q.mids.map(|p| l[at(p)]));
+            l[at(q.centre)] = quad_centre(c, m, s.added);
         }
     }
     for tri in WEDGE_SUB_TRIANGLES {
@@ -324,8 +333,16 @@ fn pyramid(ids: &[u32], s: &mut Subdivision) {
     let side = PYRAMID_SIDE_MID.map(|n| ids[n]);
     // Top half-size pyramid, and the inverted one below it (apex at the
     // base centre; its base reversed so the apex is on its positive side).
-    s.dropped += split_cell(CellKind::Pyramid, &[side[0], side[1], side[2], side[3], ids[4]], s.tets);
-    s.dropped += split_cell(CellKind::Pyramid, &[side[0], side[3], side[2], side[1], centre], s.tets);
+    s.dropped += split_cell(
+        CellKind::Pyramid,
+        &[side[0], side[1], side[2], side[3], ids[4]],
+        s.tets,
+    );
+    s.dropped += split_cell(
+        CellKind::Pyramid,
+        &[side[0], side[3], side[2], side[1], centre],
+        s.tets,
+    );
     for c in 0..4 {
         let prev = (c + 3) % 4;
         // The corner pyramid, a half-size copy of the parent at corner c:

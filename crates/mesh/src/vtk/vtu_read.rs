@@ -9,11 +9,7 @@ use super::vtu_xml::{self, XmlArray, XmlPiece};
 use super::{ReadOptions, VtkError, VtkRead};
 
 /// Parses a `.vtu` file held in memory; `name` is used in messages.
-pub(crate) fn read_with(
-    bytes: &[u8],
-    name: &str,
-    opts: &ReadOptions,
-) -> Result<VtkRead, VtkError> {
+pub(crate) fn read_with(bytes: &[u8], name: &str, opts: &ReadOptions) -> Result<VtkRead, VtkError> {
     let doc = vtu_xml::parse(bytes, name)?;
     if doc.pieces.is_empty() {
         return Err(VtkError::Invalid {
