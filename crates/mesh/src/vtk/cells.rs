@@ -92,6 +92,8 @@ pub(crate) fn classify(type_id: i64) -> CellKind {
         0..=9 | 21..=23 | 28 | 30 | 34..=36 | 51..=54 | 60..=63 | 68..=70 | 75..=77 => {
             CellKind::LowerDim
         }
+        // 74, the Lagrange pyramid, has an id but no cell class in VTK, so
+        // no node order to follow.
         31 | 33 | 37 | 41 | 55 | 56 | 64..=67 | 74 | 78..=81 => CellKind::Unsupported3d,
         _ => CellKind::Unknown,
     }
