@@ -38,6 +38,9 @@ pub struct LoadReport {
     /// Points the splits added (face and cell centres of higher-order
     /// cells, polyhedra and prisms), their fields interpolated.
     pub points_added: usize,
+    /// Higher-order cells, polyhedra and prisms per VTK type: cells, the
+    /// tetrahedra they gave, the points added for them.
+    pub subdivided: Vec<vtk::SubdividedCells>,
     /// Validation findings (components, duplicate points, seams...).
     pub validation: ValidationReport,
 }
@@ -165,6 +168,7 @@ struct Read {
     cells_split: usize,
     tets_from_split: usize,
     points_added: usize,
+    subdivided: Vec<vtk::SubdividedCells>,
 }
 
 fn from_vtk(read: vtk::VtkRead, format: &'static str) -> Read {
@@ -180,6 +184,7 @@ fn from_vtk(read: vtk::VtkRead, format: &'static str) -> Read {
             + c.subdivided.iter().map(|s| s.cells).sum::<usize>(),
         tets_from_split: c.tets_from_split,
         points_added: c.points_added,
+        subdivided: c.subdivided,
         ..Read::default()
     }
 }
@@ -195,6 +200,7 @@ fn from_plot3d(read: Plot3dRead) -> Read {
         inverted_fixed: read.reoriented,
         cells_split: hexahedra,
         points_added: 0,
+        subdivided: Vec::new(),
     }
 }
 
@@ -214,6 +220,7 @@ fn finish(mut read: Read) -> Result<LoadedMesh, MeshError> {
             cells_split: read.cells_split,
             tets_from_split: read.tets_from_split,
             points_added: read.points_added,
+            subdivided: read.subdivided,
             validation,
         },
     })

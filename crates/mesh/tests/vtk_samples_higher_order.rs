@@ -111,6 +111,14 @@ fn notch_sample_quadratic_hexahedra_and_wedges_load() {
     let loaded = loads("notch_disp.vtu", Linearize::Subdivide);
     assert_eq!(loaded.report.validation.components, 1);
     assert_eq!(loaded.report.cells_split, 2192);
+    let report_types: Vec<(i64, usize)> = loaded
+        .report
+        .subdivided
+        .iter()
+        .map(|s| (s.type_id, s.cells))
+        .collect();
+    assert_eq!(report_types, [(25, 2188), (26, 4)]);
+    assert_eq!(loaded.report.points_added, read.cells.points_added);
     let corners = loads("notch_disp.vtu", Linearize::Corners);
     assert!(corners.mesh.tets.len() <= 2188 * 6 + 4 * 3);
 }
