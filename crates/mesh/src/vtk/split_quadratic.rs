@@ -375,3 +375,108 @@ impl Subdivision<'_> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Reference coordinates of each node of `kind`.
+    fn reference(kind: CellKind) -> Vec<Point> {
+        let lattice = |nodes: &[[u8; 3]]| -> Vec<Point> {
+            nodes
+                .iter()
+                .map(|p| p.map(|c| f64::from(c) / 2.0))
+                .collect()
+        };
+        let with_mids = |corners: Vec<Point>, edges: &[[usize; 2]]| -> Vec<Point> {
+            let mids: Vec<Point> = edges
+                .iter()
+                .map(|&[a, b]| [0, 1, 2].map(|i| 0.5 * (corners[a][i] + corners[b][i])))
+                .collect();
+            corners.into_iter().chain(mids).collect()
+        };
+        match kind {
+            CellKind::QuadraticTetra => {
+                let corners = vec![[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]];
+                with_mids(corners, &TET10_EDGES)
+            }
+            CellKind::QuadraticHexahedron => lattice(&HEX29_NODES[..20]),
+            CellKind::TriquadraticHexahedron => lattice(&HEX29_NODES),
+            CellKind::LagrangeHexahedron => lattice(&HEX72_NODES),
+            CellKind::QuadraticWedge => lattice(&WEDGE18_NODES[..15]),
+            CellKind::BiquadraticWedge => lattice(&WEDGE18_NODES),
+            _ => {
+                let corners = vec![
+                    [0., 0., 0.],
+                    [1., 0., 0.],
+                    [1., 1., 0.],
+                    [0., 1., 0.],
+                    [0.5, 0.5, 1.],
+                ];
+                let edges = [
+                    [0, 1],
+                    [1, 2],
+                    [2, 3],
+                    [3, 0],
+                    [0, 4],
+                    [1, 4],
+                    [2, 4],
+                    [3, 4],
+                ];
+                with_mids(corners, &edges)
+            }
+        }
+    }
+
+    /// Every type subdivides its reference cell (node ids in order) into
+    /// positive tets whose volumes sum to the cell's (dyadic, so exact),
+    /// each node and added point where the shape functions put it.
+    #[test]
+    fn reference_cells_give_positive_tets_filling_them() {
+        let cases = [
+            (CellKind::QuadraticTetra, 1.0, 8, 0),
+            (CellKind::QuadraticHexahedron, 6.0, 0, 7),
+            (CellKind::TriquadraticHexahedron, 6.0, 0, 0),
+            (CellKind::LagrangeHexahedron, 6.0, 0, 0),
+            (CellKind::QuadraticWedge, 3.0, 24, 3),
+            (CellKind::BiquadraticWedge, 3.0, 24, 0),
+            (CellKind::QuadraticPyramid, 2.0, 0, 1),
+        ];
+        for (kind, volume6, tets_expected, added_expected) in cases {
+            let nodes = reference(kind);
+            let ids: Vec<u32> = (0..nodes.len() as u32).collect();
+            let mut xyz: Vec<f64> = nodes.iter().flatten().copied().collect();
+            let mut added = AddedPoints::new(nodes.len());
+            let mut tets = Vec::new();
+            let mut s = Subdivision {
+                points: &xyz,
+                added: &mut added,
+                tets: &mut tets,
+                dropped: 0,
+            };
+            subdivide(kind, &ids, Linearize::Subdivide, &mut s);
+            assert_eq!(s.dropped, 0, "{kind:?}");
+            assert_eq!(added.len(), added_expected, "{kind:?}");
+            if tets_expected > 0 {
+                assert_eq!(tets.len(), tets_expected, "{kind:?}");
+            }
+            added.extend(&mut xyz, 3);
+            let at = |p: u32| -> Point {
+                let i = p as usize * 3;
+                [xyz[i], xyz[i + 1], xyz[i + 2]]
+            };
+            let mut total = 0.0;
+            for t in &tets {
+                let v = signed_volume6(t.map(at));
+                assert!(v > 0.0, "{kind:?}: tet {t:?} has volume {v}");
+                total += v;
+            }
+            assert_eq!(total, volume6, "{kind:?}");
+            // The 20-node hexahedron's added centres land on the lattice.
+            if kind == CellKind::QuadraticHexahedron {
+                let body = at(nodes.len() as u32 + 6);
+                assert_eq!(body, [0.5, 0.5, 0.5]);
+            }
+        }
+    }
+}
