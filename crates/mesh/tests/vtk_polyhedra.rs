@@ -434,3 +434,22 @@ fn malformed_cells_are_one_clear_error() {
         "{e}"
     );
 }
+
+#[test]
+fn added_points_beyond_f32_are_an_error() {
+    // A 20-node hexahedron whose corners and mid-edge nodes lie near +-f32
+    // range: the serendipity face centre (-1/4 per corner, 1/2 per mid-edge
+    // node) lands at -9e38, beyond f32.
+    let points: Vec<[f64; 3]> = (0..20)
+        .map(|i| [if i < 8 { 3e38 } else { -3e38 }, i as f64, 0.0])
+        .collect();
+    let e = read_legacy_bytes(
+        legacy(&points, &[(25, (0..20).collect())]).as_bytes(),
+        "far.vtk",
+    )
+    .unwrap_err();
+    assert!(
+        matches!(&e, VtkError::NonFinite { section, .. } if section.contains("points added by the splits")),
+        "{e}"
+    );
+}

@@ -62,6 +62,7 @@ pub(crate) fn assemble_with(
             value: npoints.to_string(),
         });
     }
+    let mut points = finite_points(&grid.points, &grid.points_section, file)?;
     separate_inline_faces(&mut grid, file)?;
     let mut warnings = std::mem::take(&mut grid.warnings);
     let cells = CellTable::new(
@@ -168,7 +169,9 @@ pub(crate) fn assemble_with(
         });
     }
     added.extend(&mut grid.points, 3);
-    let points = finite_points(&grid.points, &grid.points_section, file)?;
+    // Interpolation weights below 0 extrapolate: recheck the new points.
+    let section = format!("{} (points added by the splits)", grid.points_section);
+    points.extend(finite_points(&grid.points[3 * npoints..], &section, file)?);
     counts.skipped_lower_dim = lower_dim.values().sum();
     if counts.skipped_lower_dim > 0 {
         let per_type: Vec<String> = lower_dim
@@ -313,6 +316,8 @@ fn separate_inline_faces(grid: &mut RawGrid, file: &str) -> Result<(), VtkError>
     Ok(())
 }
 
+/// The points as f32, each coordinate finite (point `i` of `xyz` is named
+/// as such in errors).
 fn finite_points(xyz: &[f64], section: &str, file: &str) -> Result<Vec<Vec3>, VtkError> {
     let mut points = Vec::with_capacity(xyz.len() / 3);
     for (i, p) in xyz.chunks_exact(3).enumerate() {
