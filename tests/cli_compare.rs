@@ -124,8 +124,16 @@ fn the_ray_caster_matches_the_reference_where_the_projection_does_not() {
         let max = errors.iter().copied().fold(0.0, f64::max);
         let mean = errors.iter().sum::<f64>() / errors.len() as f64;
         let e = &row["abs_error"];
-        assert!((f(&e["max"]) - max).abs() <= 1e-6, "{}: {e} vs max {max}", row["label"]);
-        assert!((f(&e["mean"]) - mean).abs() <= 1e-6, "{}: {e} vs mean {mean}", row["label"]);
+        assert!(
+            (f(&e["max"]) - max).abs() <= 1e-6,
+            "{}: {e} vs max {max}",
+            row["label"]
+        );
+        assert!(
+            (f(&e["mean"]) - mean).abs() <= 1e-6,
+            "{}: {e} vs mean {mean}",
+            row["label"]
+        );
     }
     for row in rows {
         for map in ["abs_map", "flip_map"] {

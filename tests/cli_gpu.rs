@@ -185,7 +185,12 @@ fn projection_matches_the_ray_caster_on_a_convex_mesh() {
     let errors: Vec<f32> = gpu
         .chunks(4)
         .zip(project.chunks(4))
-        .map(|(a, b)| a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f32::max))
+        .map(|(a, b)| {
+            a.iter()
+                .zip(b)
+                .map(|(x, y)| (x - y).abs())
+                .fold(0.0, f32::max)
+        })
         .collect();
     let beyond = errors.iter().filter(|&&e| e > budget).count();
     let worst = errors.iter().copied().fold(0.0, f32::max);

@@ -33,6 +33,28 @@ pub struct MeshArgs {
     /// or a path of names such as outer/inner). Default: every volume block.
     #[arg(long, value_name = "NAME")]
     pub block: Option<String>,
+    /// Quadratic and order-2 Lagrange cells: subdivide them into linear
+    /// tetrahedra through all their nodes, or keep their corners only (as
+    /// VTK's unstructured volume mappers do).
+    #[arg(long, value_enum, default_value_t = LinearizeArg::Subdivide)]
+    pub linearize: LinearizeArg,
+}
+
+/// `--linearize`: see [`tetray_mesh::vtk::Linearize`].
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, ValueEnum)]
+pub enum LinearizeArg {
+    #[default]
+    Subdivide,
+    Corners,
+}
+
+impl From<LinearizeArg> for tetray_mesh::vtk::Linearize {
+    fn from(arg: LinearizeArg) -> Self {
+        match arg {
+            LinearizeArg::Subdivide => tetray_mesh::vtk::Linearize::Subdivide,
+            LinearizeArg::Corners => tetray_mesh::vtk::Linearize::Corners,
+        }
+    }
 }
 
 /// VTK/ParaView camera. Whatever is not given comes from a

@@ -22,7 +22,10 @@ pub fn plot3d_dir(given: Option<&Path>, flag: &str) -> anyhow::Result<PathBuf> {
     let (dir, from) = match (given, std::env::var_os("TETRAY_DATA_DIR")) {
         (Some(dir), _) => (dir.to_path_buf(), flag),
         (None, Some(dir)) => (PathBuf::from(dir), "TETRAY_DATA_DIR"),
-        (None, None) => (PathBuf::from(BUILT_IN), "the source tree tetray was built from"),
+        (None, None) => (
+            PathBuf::from(BUILT_IN),
+            "the source tree tetray was built from",
+        ),
     };
     if !dir.is_dir() {
         bail!(

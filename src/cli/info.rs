@@ -75,7 +75,9 @@ struct InfoJson<'a> {
     welded_points: usize,
     ghost_cells_dropped: usize,
     hidden_cells_dropped: usize,
-    blocks: usize,
+    /// Multi-block leaves read and skipped (`.vtm`; 0 otherwise); the
+    /// Exodus element blocks are `blocks`.
+    blocks_read: usize,
     blocks_skipped: usize,
     duplicate_points: usize,
     unused_points: usize,
@@ -160,7 +162,7 @@ pub fn run(args: &InfoArgs) -> anyhow::Result<()> {
             welded_points: summary.pieces.welded_points,
             ghost_cells_dropped: summary.pieces.ghost_cells_dropped,
             hidden_cells_dropped: summary.pieces.hidden_cells_dropped,
-            blocks: summary.pieces.blocks,
+            blocks_read: summary.pieces.blocks,
             blocks_skipped: summary.pieces.blocks_skipped,
             duplicate_points: validation.duplicate_points,
             unused_points: validation.unused_points,

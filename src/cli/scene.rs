@@ -43,8 +43,22 @@ impl MeshInput {
     pub fn describe(&self) -> String {
         let (mesh, report) = (&self.loaded.mesh, &self.loaded.report);
         let split = if report.cells_split > 0 {
+            let per_type: Vec<String> = report
+                .subdivided
+                .iter()
+                .map(|s| format!("{} {} (type {})", s.cells, s.name, s.type_id))
+                .collect();
+            let detail = if per_type.is_empty() {
+                String::new()
+            } else {
+                format!(
+                    ", among them {}; {} points added",
+                    per_type.join(", "),
+                    report.points_added
+                )
+            };
             format!(
-                " ({} cells split into {})",
+                " ({} cells split into {}{detail})",
                 report.cells_split, report.tets_from_split
             )
         } else {
@@ -100,6 +114,7 @@ pub fn load_mesh(args: &MeshArgs) -> anyhow::Result<MeshInput> {
                 time_step: args.time_step,
                 time: args.time,
                 block: args.block.clone(),
+                linearize: args.linearize.into(),
             };
             let loaded = tetray_mesh::load(path, &options)?;
             let timed = args.time_step.is_some() || args.time.is_some();

@@ -22,6 +22,9 @@ pub struct LoadOptions {
     /// For a multi-block `.vtm`: keep only the block of this name (or
     /// path `outer/inner`, by the blocks' `name` attributes).
     pub block: Option<String>,
+    /// Quadratic and Lagrange cells: subdivided through all their nodes
+    /// (default) or reduced to their corners.
+    pub linearize: vtk::Linearize,
 }
 
 /// What happened on the way from the file to the mesh.
@@ -48,6 +51,12 @@ pub struct LoadReport {
     /// read and skipped (parallel and multi-block files; ghost and blanked
     /// cells of any VTK file).
     pub pieces: vtk::PieceCounts,
+    /// Points the splits added (face and cell centres of higher-order
+    /// cells, polyhedra and prisms), their fields interpolated.
+    pub points_added: usize,
+    /// Higher-order cells, polyhedra and prisms per VTK type: cells, the
+    /// tetrahedra they gave, the points added for them.
+    pub subdivided: Vec<vtk::SubdividedCells>,
     /// Validation findings (components, duplicate points, seams...).
     pub validation: ValidationReport,
     /// The times the file stores, one per time step (Exodus II; empty for
@@ -129,9 +138,12 @@ pub fn plot3d_q_sibling(xyz: &Path) -> Option<PathBuf> {
 pub fn load(path: &Path, opts: &LoadOptions) -> Result<LoadedMesh, MeshError> {
     let file = path.display().to_string();
     let format = format_of(path).ok_or_else(|| MeshError::UnknownFormat { file: file.clone() })?;
+    let vtk_opts = vtk::ReadOptions {
+        linearize: opts.linearize,
+    };
     let read = match format {
         Format::Legacy => {
-            let read = vtk::read_legacy_file(path)?;
+            let read = vtk::read_legacy_file_with(path, &vtk_opts)?;
             let format = match read.dataset {
                 "StructuredGrid" => "VTK legacy STRUCTURED_GRID",
                 "RectilinearGrid" => "VTK legacy RECTILINEAR_GRID",
@@ -141,7 +153,7 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<LoadedMesh, MeshError> {
             from_vtk(read, format)
         }
         Format::Xml => {
-            let read = vtk::read_vtu_file(path)?;
+            let read = vtk::read_vtu_file_with(path, &vtk_opts)?;
             let format = match read.dataset {
                 "StructuredGrid" => "VTK XML StructuredGrid",
                 "RectilinearGrid" => "VTK XML RectilinearGrid",
@@ -150,15 +162,19 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<LoadedMesh, MeshError> {
             };
             from_vtk(read, format)
         }
-        Format::Parallel => from_vtk(vtk::read_parallel_file(path)?, "VTK parallel XML"),
+        Format::Parallel => from_vtk(
+            vtk::read_parallel_file_with(path, &vtk_opts)?,
+            "VTK parallel XML",
+        ),
         Format::MultiBlock => from_vtk(
-            vtk::read_multiblock_file(path, opts.block.as_deref())?,
+            vtk::read_multiblock_file_with(path, opts.block.as_deref(), &vtk_opts)?,
             "VTK multi-block",
         ),
         Format::Exodus => {
             let exodus = ExodusOptions {
                 time_step: opts.time_step,
                 time: opts.time,
+                linearize: opts.linearize,
             };
             from_exodus(read_exodus_file(path, &exodus)?)
         }
@@ -227,6 +243,8 @@ struct Read {
     time_step: Option<usize>,
     blocks: Vec<ElementBlock>,
     pieces: vtk::PieceCounts,
+    points_added: usize,
+    subdivided: Vec<vtk::SubdividedCells>,
 }
 
 fn from_vtk(read: vtk::VtkRead, format: &'static str) -> Read {
@@ -235,11 +253,23 @@ fn from_vtk(read: vtk::VtkRead, format: &'static str) -> Read {
         mesh: read.mesh,
         format,
         warnings: read.warnings,
-        cells_split: c.hexahedra + c.wedges + c.pyramids + c.voxels,
+        cells_split: cells_split(&c),
         tets_from_split: c.tets_from_split,
+        points_added: c.points_added,
+        subdivided: c.subdivided,
         pieces: read.pieces,
         ..Read::default()
     }
+}
+
+/// The cells split or subdivided into tetrahedra: every volume cell but
+/// the linear tetrahedra.
+fn cells_split(c: &vtk::CellCounts) -> usize {
+    c.hexahedra
+        + c.wedges
+        + c.pyramids
+        + c.voxels
+        + c.subdivided.iter().map(|s| s.cells).sum::<usize>()
 }
 
 fn from_exodus(read: ExodusRead) -> Read {
@@ -248,8 +278,10 @@ fn from_exodus(read: ExodusRead) -> Read {
         mesh: read.mesh,
         format: "Exodus II",
         warnings: read.warnings,
-        cells_split: c.hexahedra + c.wedges + c.pyramids + c.voxels,
+        cells_split: cells_split(&c),
         tets_from_split: c.tets_from_split,
+        points_added: c.points_added,
+        subdivided: c.subdivided,
         times: read.times,
         time_step: read.time_step,
         blocks: read.blocks,
@@ -287,6 +319,8 @@ fn finish(mut read: Read) -> Result<LoadedMesh, MeshError> {
             cells_split: read.cells_split,
             tets_from_split: read.tets_from_split,
             pieces: read.pieces,
+            points_added: read.points_added,
+            subdivided: read.subdivided,
             validation,
             times: read.times,
             time_step: read.time_step,

@@ -1,13 +1,19 @@
 //! From the arrays of a parsed file (either format) to a [`TetMesh`]:
-//! index and finiteness checks, cell splitting, point fields.
+//! index and finiteness checks, cell splitting, point fields. Points the
+//! splits add come after the file's, with every point array interpolated
+//! to them with the weights that place them.
 
 use std::collections::BTreeMap;
 
 use glam::Vec3;
 
+use super::added_points::AddedPoints;
 use super::cells::{classify, type_name, CellKind};
+use super::poly_grid::{checked_faces, separate_inline_faces};
+use super::polyhedron::{prism_faces, split_polyhedron, PolyhedronFaces};
 use super::split::split_cell;
-use super::{CellCounts, PieceCounts, VtkError, VtkRead};
+use super::split_quadratic::{subdivide, Subdivision};
+use super::{CellCounts, PieceCounts, ReadOptions, SubdividedCells, VtkError, VtkRead};
 use crate::{ScalarField, TetMesh};
 
 /// A named point or cell array as read, `components` values per tuple.
@@ -38,6 +44,10 @@ pub(crate) struct RawGrid {
     pub types: Vec<i64>,
     pub point_arrays: Vec<RawArray>,
     pub cell_arrays: Vec<RawArray>,
+    /// Faces of the polyhedra (type 42) whose file lists them apart from
+    /// the connectivity (XML); a polyhedron missing here carries its face
+    /// stream in the connectivity (legacy).
+    pub polyhedron_faces: PolyhedronFaces,
     pub warnings: Vec<String>,
     /// The VTK dataset type read ("UnstructuredGrid", "StructuredGrid"...).
     pub dataset: &'static str,
@@ -49,7 +59,11 @@ pub(crate) struct RawGrid {
 }
 
 /// Checks what the reader can see, splits the cells and builds the mesh.
-pub(crate) fn assemble(mut grid: RawGrid, file: &str) -> Result<VtkRead, VtkError> {
+pub(crate) fn assemble_with(
+    mut grid: RawGrid,
+    file: &str,
+    opts: &ReadOptions,
+) -> Result<VtkRead, VtkError> {
     let npoints = grid.points.len() / 3;
     if u32::try_from(npoints).is_err() {
         return Err(VtkError::Unsupported {
@@ -59,12 +73,21 @@ pub(crate) fn assemble(mut grid: RawGrid, file: &str) -> Result<VtkRead, VtkErro
             value: npoints.to_string(),
         });
     }
-    let points = finite_points(&grid.points, &grid.points_section, file)?;
+    let mut points = finite_points(&grid.points, &grid.points_section, file)?;
+    separate_inline_faces(&mut grid, file)?;
     let mut warnings = std::mem::take(&mut grid.warnings);
-    let cells = CellTable::new(&grid, npoints, file)?;
+    let cells = CellTable::new(
+        &grid.offsets,
+        &grid.connectivity,
+        grid.types.len(),
+        npoints,
+        file,
+    )?;
 
     let mut tets = Vec::new();
+    let mut added = AddedPoints::new(npoints);
     let mut counts = CellCounts::default();
+    let mut subdivided: BTreeMap<i64, SubdividedCells> = BTreeMap::new();
     let mut lower_dim: BTreeMap<i64, usize> = BTreeMap::new();
     let mut dropped = 0;
     let mut volume_cell = vec![false; cells.len()];
@@ -86,33 +109,80 @@ pub(crate) fn assemble(mut grid: RawGrid, file: &str) -> Result<VtkRead, VtkErro
             }
             _ => {}
         }
-        let expected = kind.point_count().unwrap_or(0);
-        if ids.len() != expected {
-            return Err(VtkError::CellSize {
-                file: file.into(),
-                cell: c,
-                type_id,
-                type_name: type_name(type_id),
-                expected,
-                found: ids.len(),
-            });
+        if let Some(expected) = kind.point_count() {
+            if ids.len() != expected {
+                return Err(VtkError::CellSize {
+                    file: file.into(),
+                    cell: c,
+                    type_id,
+                    type_name: type_name(type_id),
+                    expected,
+                    found: ids.len(),
+                });
+            }
         }
         volume_cell[c] = true;
-        let before = tets.len();
-        dropped += split_cell(kind, ids, &mut tets);
-        let made = tets.len() - before;
+        let (tets_before, points_before) = (tets.len(), added.len());
+        match kind {
+            _ if kind.is_higher_order() => {
+                let mut s = Subdivision {
+                    points: &grid.points,
+                    added: &mut added,
+                    tets: &mut tets,
+                    dropped: 0,
+                };
+                subdivide(kind, ids, opts.linearize, &mut s);
+                dropped += s.dropped;
+            }
+            CellKind::Polyhedron | CellKind::PentagonalPrism | CellKind::HexagonalPrism => {
+                let faces = match kind {
+                    CellKind::PentagonalPrism => prism_faces(ids, 5),
+                    CellKind::HexagonalPrism => prism_faces(ids, 6),
+                    _ => checked_faces(&grid.polyhedron_faces, c, npoints, file)?,
+                };
+                dropped += split_polyhedron(&faces, &mut added, &mut tets);
+            }
+            _ => dropped += split_cell(kind, ids, &mut tets),
+        }
+        let made = tets.len() - tets_before;
         match kind {
             CellKind::Tetra => counts.tetra += 1,
             CellKind::Hexahedron => counts.hexahedra += 1,
             CellKind::Voxel => counts.voxels += 1,
             CellKind::Wedge => counts.wedges += 1,
             CellKind::Pyramid => counts.pyramids += 1,
-            _ => {}
+            _ => {
+                let entry = subdivided.entry(type_id).or_insert(SubdividedCells {
+                    type_id,
+                    name: type_name(type_id),
+                    cells: 0,
+                    tets: 0,
+                    points_added: 0,
+                });
+                entry.cells += 1;
+                entry.tets += made;
+                entry.points_added += added.len() - points_before;
+            }
         }
         if kind != CellKind::Tetra {
             counts.tets_from_split += made;
         }
     }
+    counts.subdivided = subdivided.into_values().collect();
+    counts.points_added = added.len();
+    let total_points = npoints + added.len();
+    if u32::try_from(total_points).is_err() {
+        return Err(VtkError::Unsupported {
+            file: file.into(),
+            section: grid.points_section,
+            what: "point count with the points the splits add (tetrahedra index points with u32)",
+            value: total_points.to_string(),
+        });
+    }
+    added.extend(&mut grid.points, 3);
+    // Interpolation weights below 0 extrapolate: recheck the new points.
+    let section = format!("{} (points added by the splits)", grid.points_section);
+    points.extend(finite_points(&grid.points[3 * npoints..], &section, file)?);
     counts.skipped_lower_dim = lower_dim.values().sum();
     if counts.skipped_lower_dim > 0 {
         let per_type: Vec<String> = lower_dim
@@ -132,8 +202,10 @@ pub(crate) fn assemble(mut grid: RawGrid, file: &str) -> Result<VtkRead, VtkErro
     }
 
     let mut fields = Vec::new();
-    for array in &grid.point_arrays {
-        let (name, values) = per_tuple(array, npoints, file)?;
+    for array in &mut grid.point_arrays {
+        check_tuples(array, npoints, file)?;
+        added.extend(&mut array.values, array.components);
+        let (name, values) = per_tuple(array, total_points, file)?;
         fields.push(ScalarField {
             name,
             values: to_f32(&values, &array.section, file)?,
@@ -143,7 +215,7 @@ pub(crate) fn assemble(mut grid: RawGrid, file: &str) -> Result<VtkRead, VtkErro
         let users = cells.point_users(&volume_cell, npoints);
         for array in &grid.cell_arrays {
             let (mut name, cell_values) = per_tuple(array, cells.len(), file)?;
-            let averaged = match &array.defined {
+            let mut averaged = match &array.defined {
                 None => cells.average_to_points(&cell_values, &volume_cell, &users),
                 Some(defined) => {
                     let used = mask_cells(&volume_cell, defined, &array.section, file)?;
@@ -151,6 +223,7 @@ pub(crate) fn assemble(mut grid: RawGrid, file: &str) -> Result<VtkRead, VtkErro
                     cells.average_to_points(&cell_values, &used, &users)
                 }
             };
+            added.extend(&mut averaged, 1);
             let renamed = fields.iter().any(|f| f.name == name);
             if renamed {
                 name.push_str("_cell");
@@ -212,6 +285,8 @@ fn mask_cells(
         .collect())
 }
 
+/// The points as f32, each coordinate finite (point `i` of `xyz` is named
+/// as such in errors).
 fn finite_points(xyz: &[f64], section: &str, file: &str) -> Result<Vec<Vec3>, VtkError> {
     let mut points = Vec::with_capacity(xyz.len() / 3);
     for (i, p) in xyz.chunks_exact(3).enumerate() {
@@ -231,9 +306,8 @@ fn finite_points(xyz: &[f64], section: &str, file: &str) -> Result<Vec<Vec3>, Vt
     Ok(points)
 }
 
-/// One value per tuple: the value itself, or the Euclidean norm of a
-/// multi-component tuple (named `<name>_magnitude`). Checks the count.
-fn per_tuple(array: &RawArray, tuples: usize, file: &str) -> Result<(String, Vec<f64>), VtkError> {
+/// Checks an array has `tuples` tuples.
+fn check_tuples(array: &RawArray, tuples: usize, file: &str) -> Result<(), VtkError> {
     let k = array.components.max(1);
     if array.values.len() != tuples.saturating_mul(k) {
         return Err(VtkError::CountMismatch {
@@ -244,6 +318,14 @@ fn per_tuple(array: &RawArray, tuples: usize, file: &str) -> Result<(String, Vec
             found: array.values.len(),
         });
     }
+    Ok(())
+}
+
+/// One value per tuple: the value itself, or the Euclidean norm of a
+/// multi-component tuple (named `<name>_magnitude`). Checks the count.
+fn per_tuple(array: &RawArray, tuples: usize, file: &str) -> Result<(String, Vec<f64>), VtkError> {
+    let k = array.components.max(1);
+    check_tuples(array, tuples, file)?;
     if let Some(i) = array.values.iter().position(|v| !v.is_finite()) {
         return Err(VtkError::NonFinite {
             file: file.into(),
@@ -287,13 +369,14 @@ struct CellTable<'a> {
 }
 
 impl<'a> CellTable<'a> {
-    fn new(grid: &'a RawGrid, npoints: usize, file: &str) -> Result<Self, VtkError> {
-        let ncells = grid.types.len();
-        let offsets: &[usize] = if grid.offsets.is_empty() {
-            &[0]
-        } else {
-            &grid.offsets
-        };
+    fn new(
+        offsets: &'a [usize],
+        connectivity: &[i64],
+        ncells: usize,
+        npoints: usize,
+        file: &str,
+    ) -> Result<Self, VtkError> {
+        let offsets: &[usize] = if offsets.is_empty() { &[0] } else { offsets };
         let invalid = |message: String| VtkError::Invalid {
             file: file.into(),
             section: "cells".into(),
@@ -305,16 +388,16 @@ impl<'a> CellTable<'a> {
                 offsets.len().saturating_sub(1)
             )));
         }
-        let mut ids = Vec::with_capacity(grid.connectivity.len());
+        let mut ids = Vec::with_capacity(connectivity.len());
         for c in 0..ncells {
             let (start, end) = (offsets[c], offsets[c + 1]);
-            if end < start || end > grid.connectivity.len() {
+            if end < start || end > connectivity.len() {
                 return Err(invalid(format!(
                     "cell {c} spans connectivity entries {start}..{end} of {}",
-                    grid.connectivity.len()
+                    connectivity.len()
                 )));
             }
-            for &index in &grid.connectivity[start..end] {
+            for &index in &connectivity[start..end] {
                 match u32::try_from(index) {
                     Ok(i) if (i as usize) < npoints => ids.push(i),
                     _ => {
@@ -328,11 +411,11 @@ impl<'a> CellTable<'a> {
                 }
             }
         }
-        if offsets[ncells] != grid.connectivity.len() {
+        if offsets[ncells] != connectivity.len() {
             return Err(invalid(format!(
                 "the cells use {} connectivity entries but there are {}",
                 offsets[ncells],
-                grid.connectivity.len()
+                connectivity.len()
             )));
         }
         Ok(CellTable { offsets, ids })
