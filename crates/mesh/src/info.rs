@@ -2,9 +2,9 @@
 
 use std::fmt;
 
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 
-use crate::LoadedMesh;
+use crate::{BoundaryFace, ExcludedCells, LoadedMesh};
 
 /// Range of one scalar field.
 #[derive(Debug, Clone, PartialEq)]
@@ -30,6 +30,16 @@ pub struct MeshSummary {
     pub degenerate_dropped: usize,
     pub cells_split: usize,
     pub tets_from_split: usize,
+    /// The stored points are relative to this origin (file coordinates =
+    /// origin + point).
+    pub origin: DVec3,
+    /// Cells left out of the walk.
+    pub excluded: ExcludedCells,
+    /// Hanging nodes, pairs of faces split differently, and the unmatched
+    /// faces made boundary.
+    pub hanging_nodes: usize,
+    pub folded_face_pairs: usize,
+    pub nonconforming_faces: Vec<BoundaryFace>,
     pub warnings: Vec<String>,
 }
 
@@ -71,6 +81,11 @@ impl MeshSummary {
             degenerate_dropped: report.degenerate_dropped,
             cells_split: report.cells_split,
             tets_from_split: report.tets_from_split,
+            origin: report.origin,
+            excluded: report.excluded.clone(),
+            hanging_nodes: report.validation.hanging_nodes,
+            folded_face_pairs: report.validation.folded_face_pairs,
+            nonconforming_faces: report.validation.nonconforming_faces.clone(),
             warnings: report.warnings.clone(),
         }
     }
@@ -97,8 +112,56 @@ impl fmt::Display for MeshSummary {
                 self.cells_split, self.tets_from_split
             )?;
         }
+        let o = self.origin;
+        if o != DVec3::ZERO {
+            writeln!(
+                f,
+                "origin:          ({}, {}, {}) (bounds are relative to it)",
+                o.x, o.y, o.z
+            )?;
+        }
         writeln!(f, "reoriented:      {}", self.inverted_fixed)?;
         writeln!(f, "flat dropped:    {}", self.degenerate_dropped)?;
+        let x = &self.excluded;
+        if !x.cells.is_empty() {
+            let shown: Vec<String> = x.cells.iter().take(20).map(u32::to_string).collect();
+            writeln!(
+                f,
+                "left out:        {} cells ({} tangled, {} overlapping, {} non-manifold), {} \
+                 tetrahedra, {:.4}% of the volume",
+                x.cells.len(),
+                x.tangled,
+                x.overlapping,
+                x.non_manifold,
+                x.tets,
+                100.0 * x.volume_share
+            )?;
+            let more = if x.cells.len() > 20 { " ..." } else { "" };
+            writeln!(f, "  cells:         {}{more}", shown.join(" "))?;
+        }
+        if x.flat_tets > 0 {
+            writeln!(f, "flat dropped:    {} tetrahedra (on load)", x.flat_tets)?;
+        }
+        if !self.nonconforming_faces.is_empty() {
+            writeln!(
+                f,
+                "non-conforming:  {} faces made boundary ({} hanging nodes, {} pairs of faces \
+                 split differently)",
+                self.nonconforming_faces.len(),
+                self.hanging_nodes,
+                self.folded_face_pairs
+            )?;
+            for face in self.nonconforming_faces.iter().take(10) {
+                writeln!(
+                    f,
+                    "  tetrahedron {} face {}: points {:?}",
+                    face.tet, face.local_face, face.vertices
+                )?;
+            }
+            if self.nonconforming_faces.len() > 10 {
+                writeln!(f, "  ...")?;
+            }
+        }
         if self.fields.is_empty() {
             writeln!(f, "fields:          none")?;
         } else {

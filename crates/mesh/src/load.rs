@@ -1,10 +1,16 @@
-//! Loading a mesh from a file, ready to render: read, orient, validate,
-//! build the topology.
+//! Loading a mesh from a file, ready to render: read (points relative to
+//! an origin near the mesh, see [`crate::centring_origin`]), leave out the
+//! cells that cannot be walked (`exclude.rs`), orient, validate, build the
+//! topology. What was changed is in the [`LoadReport`].
 
 use std::path::{Path, PathBuf};
 
+use glam::DVec3;
+
+use crate::exclude::{exclude_bad_cells, ExcludedCells};
 use crate::plot3d::{read_plot3d_bytes, read_plot3d_files, Plot3dRead};
-use crate::{validate_with_topology, vtk, MeshError, TetMesh, Topology, ValidationReport};
+use crate::validate::{check_input, check_walkable};
+use crate::{vtk, MeshError, TetMesh, Topology, ValidationReport};
 
 /// Options of [`load`].
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
@@ -32,8 +38,59 @@ pub struct LoadReport {
     pub cells_split: usize,
     /// Tetrahedra made by those splits.
     pub tets_from_split: usize,
-    /// Validation findings (components, duplicate points, seams...).
+    /// Validation findings (components, duplicate points, seams,
+    /// non-conforming faces...).
     pub validation: ValidationReport,
+    /// The points are stored relative to this origin: a point's coordinates
+    /// in the file are `origin + point` (zero unless the mesh lies far from
+    /// zero; see [`crate::centring_origin`]). Cameras given in the file's
+    /// coordinates subtract it.
+    pub origin: DVec3,
+    /// Cells left out of the walk (tangled, overlapping) and flat
+    /// tetrahedra dropped.
+    pub excluded: ExcludedCells,
+}
+
+impl LoadReport {
+    /// One line saying what loading changed in the mesh (non-conforming
+    /// faces made boundary, cells left out with their volume share, the
+    /// origin shift), or `None` when it changed nothing of the geometry.
+    pub fn changes(&self) -> Option<String> {
+        let mut parts = Vec::new();
+        let v = &self.validation;
+        if !v.nonconforming_faces.is_empty() {
+            parts.push(format!(
+                "{} non-conforming faces made boundary ({} hanging nodes, {} faces split \
+                 differently)",
+                v.nonconforming_faces.len(),
+                v.hanging_nodes,
+                v.folded_face_pairs
+            ));
+        }
+        let x = &self.excluded;
+        if !x.cells.is_empty() {
+            parts.push(format!(
+                "{} cells left out ({} tangled, {} overlapping, {} non-manifold; {:.4}% of the \
+                 volume)",
+                x.cells.len(),
+                x.tangled,
+                x.overlapping,
+                x.non_manifold,
+                100.0 * x.volume_share
+            ));
+        }
+        if x.flat_tets > 0 {
+            parts.push(format!("{} flat tetrahedra dropped", x.flat_tets));
+        }
+        if self.origin != DVec3::ZERO {
+            let o = self.origin;
+            parts.push(format!(
+                "points stored relative to the origin ({}, {}, {})",
+                o.x, o.y, o.z
+            ));
+        }
+        (!parts.is_empty()).then(|| format!("mesh changed on load: {}", parts.join("; ")))
+    }
 }
 
 /// A mesh ready to render: positively oriented, validated, with its
@@ -43,6 +100,14 @@ pub struct LoadedMesh {
     pub mesh: TetMesh,
     pub topology: Topology,
     pub report: LoadReport,
+}
+
+impl LoadedMesh {
+    /// Where the stored points are relative to the file's coordinates
+    /// (see [`LoadReport::origin`]).
+    pub fn origin(&self) -> DVec3 {
+        self.report.origin
+    }
 }
 
 /// The file formats [`load`] recognises by name.
@@ -155,6 +220,9 @@ struct Read {
     inverted_fixed: usize,
     cells_split: usize,
     tets_from_split: usize,
+    origin: DVec3,
+    /// Per tetrahedron, the cell it came from (empty: each its own).
+    tet_cells: Vec<u32>,
 }
 
 fn from_vtk(read: vtk::VtkRead, format: &'static str) -> Read {
@@ -165,15 +233,29 @@ fn from_vtk(read: vtk::VtkRead, format: &'static str) -> Read {
         warnings: read.warnings,
         cells_split: c.hexahedra + c.wedges + c.pyramids + c.voxels,
         tets_from_split: c.tets_from_split,
+        origin: read.origin,
+        tet_cells: read.tet_cells,
         ..Read::default()
     }
 }
 
+/// PLOT3D grids are read in f32 (most are single precision); they are
+/// centred like the others, the subtraction done in f64.
 fn from_plot3d(read: Plot3dRead) -> Read {
     let hexahedra = read.hexahedra - read.blanked_hexahedra;
+    let mut mesh = read.mesh;
+    let origin = crate::geometry::bounds_f64(mesh.points.iter().map(|p| p.as_dvec3()))
+        .map_or(DVec3::ZERO, |(lo, hi)| crate::centring_origin(lo, hi));
+    if origin != DVec3::ZERO {
+        for p in &mut mesh.points {
+            *p = (p.as_dvec3() - origin).as_vec3();
+        }
+    }
     Read {
-        tets_from_split: read.mesh.tets.len(),
-        mesh: read.mesh,
+        tets_from_split: mesh.tets.len(),
+        mesh,
+        origin,
+        tet_cells: Vec::new(),
         format: "PLOT3D",
         warnings: read.warnings,
         degenerate_dropped: read.degenerate_dropped,
@@ -183,9 +265,12 @@ fn from_plot3d(read: Plot3dRead) -> Read {
 }
 
 fn finish(mut read: Read) -> Result<LoadedMesh, MeshError> {
-    read.inverted_fixed += read.mesh.orient();
-    let (validation, topology) = validate_with_topology(&read.mesh)?;
+    check_input(&read.mesh)?;
+    let (topology, excluded, reoriented) = exclude_bad_cells(&mut read.mesh, &read.tet_cells)?;
+    read.inverted_fixed += reoriented;
+    let validation = check_walkable(&read.mesh, &topology)?;
     let mut warnings = read.warnings;
+    warnings.extend(excluded.warnings());
     warnings.extend(validation.warnings.iter().cloned());
     Ok(LoadedMesh {
         mesh: read.mesh,
@@ -198,6 +283,8 @@ fn finish(mut read: Read) -> Result<LoadedMesh, MeshError> {
             cells_split: read.cells_split,
             tets_from_split: read.tets_from_split,
             validation,
+            origin: read.origin,
+            excluded,
         },
     })
 }

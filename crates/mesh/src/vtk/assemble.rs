@@ -3,7 +3,7 @@
 
 use std::collections::BTreeMap;
 
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 
 use super::cells::{classify, type_name, CellKind};
 use super::split::split_cell;
@@ -47,11 +47,12 @@ pub(crate) fn assemble(mut grid: RawGrid, file: &str) -> Result<VtkRead, VtkErro
             value: npoints.to_string(),
         });
     }
-    let points = finite_points(&grid.points, &grid.points_section, file)?;
+    let (points, origin) = finite_points(&grid.points, &grid.points_section, file)?;
     let mut warnings = std::mem::take(&mut grid.warnings);
     let cells = CellTable::new(&grid, npoints, file)?;
 
     let mut tets = Vec::new();
+    let mut tet_cells = Vec::new();
     let mut counts = CellCounts::default();
     let mut lower_dim: BTreeMap<i64, usize> = BTreeMap::new();
     let mut dropped = 0;
@@ -89,6 +90,7 @@ pub(crate) fn assemble(mut grid: RawGrid, file: &str) -> Result<VtkRead, VtkErro
         let before = tets.len();
         dropped += split_cell(kind, ids, &mut tets);
         let made = tets.len() - before;
+        tet_cells.resize(tets.len(), c as u32);
         match kind {
             CellKind::Tetra => counts.tetra += 1,
             CellKind::Hexahedron => counts.hexahedra += 1,
@@ -160,26 +162,37 @@ pub(crate) fn assemble(mut grid: RawGrid, file: &str) -> Result<VtkRead, VtkErro
         },
         warnings,
         cells: counts,
+        origin,
+        tet_cells,
     })
 }
 
-fn finite_points(xyz: &[f64], section: &str, file: &str) -> Result<Vec<Vec3>, VtkError> {
+/// The points relative to their origin ([`crate::centring_origin`]: the
+/// centre of their bounds when they lie far from zero), computed in f64 and
+/// only then rounded to f32; and that origin. A coordinate that is not
+/// finite, or beyond f32's range, is an error (as every value read).
+fn finite_points(xyz: &[f64], section: &str, file: &str) -> Result<(Vec<Vec3>, DVec3), VtkError> {
+    let not_finite = |i: usize, axis: usize, value: f64| VtkError::NonFinite {
+        file: file.into(),
+        section: format!("{section}, point {i} coordinate {}", ["x", "y", "z"][axis]),
+        index: 3 * i + axis,
+        value,
+    };
+    if let Some(at) = xyz.iter().position(|&v| !(v as f32).is_finite()) {
+        return Err(not_finite(at / 3, at % 3, xyz[at]));
+    }
+    let wide = |p: &[f64]| DVec3::new(p[0], p[1], p[2]);
+    let origin = crate::geometry::bounds_f64(xyz.chunks_exact(3).map(wide))
+        .map_or(DVec3::ZERO, |(lo, hi)| crate::centring_origin(lo, hi));
     let mut points = Vec::with_capacity(xyz.len() / 3);
     for (i, p) in xyz.chunks_exact(3).enumerate() {
-        let q = Vec3::new(p[0] as f32, p[1] as f32, p[2] as f32);
-        for (axis, (&wide, narrow)) in p.iter().zip(q.to_array()).enumerate() {
-            if !narrow.is_finite() {
-                return Err(VtkError::NonFinite {
-                    file: file.into(),
-                    section: format!("{section}, point {i} coordinate {}", ["x", "y", "z"][axis]),
-                    index: 3 * i + axis,
-                    value: wide,
-                });
-            }
+        let q = (wide(p) - origin).as_vec3();
+        if let Some(axis) = (0..3).find(|&a| !q[a].is_finite()) {
+            return Err(not_finite(i, axis, p[axis]));
         }
         points.push(q);
     }
-    Ok(points)
+    Ok((points, origin))
 }
 
 /// One value per tuple: the value itself, or the Euclidean norm of a

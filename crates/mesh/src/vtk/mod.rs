@@ -49,6 +49,12 @@ pub struct VtkRead {
     /// Things read past or converted (skipped cells, cell data averaged...).
     pub warnings: Vec<String>,
     pub cells: CellCounts,
+    /// The points are stored relative to this origin (f64; see
+    /// [`crate::centring_origin`]): a point's coordinates as in the file
+    /// are `origin + point`.
+    pub origin: glam::DVec3,
+    /// Per tetrahedron, the index of the file's cell it was split from.
+    pub tet_cells: Vec<u32>,
 }
 
 /// How many cells of each kind were read, and how many tetrahedra the
