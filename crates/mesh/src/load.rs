@@ -60,7 +60,7 @@ impl LoadReport {
         let v = &self.validation;
         if !v.nonconforming_faces.is_empty() {
             parts.push(format!(
-                "{} non-conforming faces made boundary ({} hanging nodes, {} faces split \
+                "{} non-conforming faces made boundary ({} hanging nodes, {} pairs of faces split \
                  differently)",
                 v.nonconforming_faces.len(),
                 v.hanging_nodes,
