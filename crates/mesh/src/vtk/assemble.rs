@@ -6,7 +6,7 @@ use std::collections::BTreeMap;
 use glam::{DVec3, Vec3};
 
 use super::cells::{classify, type_name, CellKind};
-use super::split::split_cell;
+use super::split::{hexahedron_cones, split_cell};
 use super::{CellCounts, VtkError, VtkRead};
 use crate::{ScalarField, TetMesh};
 
@@ -56,6 +56,7 @@ pub(crate) fn assemble(mut grid: RawGrid, file: &str) -> Result<VtkRead, VtkErro
     let mut counts = CellCounts::default();
     let mut lower_dim: BTreeMap<i64, usize> = BTreeMap::new();
     let mut dropped = 0;
+    let mut resplit = 0;
     let mut volume_cell = vec![false; cells.len()];
     for (c, &type_id) in grid.types.iter().enumerate() {
         let ids = cells.cell(c);
@@ -89,6 +90,14 @@ pub(crate) fn assemble(mut grid: RawGrid, file: &str) -> Result<VtkRead, VtkErro
         volume_cell[c] = true;
         let before = tets.len();
         dropped += split_cell(kind, ids, &mut tets);
+        if kind == CellKind::Hexahedron && !one_orientation(&tets[before..], &grid.points) {
+            let cones = hexahedron_cones(ids);
+            if let Some(better) = cones.into_iter().find(|c| one_orientation(c, &grid.points)) {
+                tets.truncate(before);
+                tets.extend(better);
+                resplit += 1;
+            }
+        }
         let made = tets.len() - before;
         tet_cells.resize(tets.len(), c as u32);
         match kind {
@@ -113,6 +122,12 @@ pub(crate) fn assemble(mut grid: RawGrid, file: &str) -> Result<VtkRead, VtkErro
             "skipped {} lower-dimensional cells: {}",
             counts.skipped_lower_dim,
             per_type.join(", ")
+        ));
+    }
+    if resplit > 0 {
+        warnings.push(format!(
+            "{resplit} distorted hexahedra split from another corner (same face diagonals, so \
+             still conforming): the default split made tetrahedra of both orientations"
         ));
     }
     if dropped > 0 {
@@ -193,6 +208,33 @@ fn finite_points(xyz: &[f64], section: &str, file: &str) -> Result<(Vec<Vec3>, D
         points.push(q);
     }
     Ok((points, origin))
+}
+
+/// Whether the tetrahedra (of one cell) all have the same strict
+/// orientation on the file's f64 points (`xyz`: x, y, z per point): all
+/// positive for a well-shaped cell, all negative for one listed inverted.
+/// Volumes are taken relative to each tetrahedron's first point, so far
+/// coordinates lose nothing of the cell's shape.
+fn one_orientation(tets: &[[u32; 4]], xyz: &[f64]) -> bool {
+    let point = |i: u32| {
+        let i = 3 * i as usize;
+        DVec3::new(xyz[i], xyz[i + 1], xyz[i + 2])
+    };
+    let mut signs = tets.iter().map(|t| {
+        let p = t.map(point);
+        let v = (p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0]));
+        if v > 0.0 {
+            1
+        } else if v < 0.0 {
+            -1
+        } else {
+            0
+        }
+    });
+    let Some(first) = signs.next() else {
+        return true;
+    };
+    first != 0 && signs.all(|s| s == first)
 }
 
 /// One value per tuple: the value itself, or the Euclidean norm of a
