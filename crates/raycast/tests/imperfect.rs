@@ -24,7 +24,7 @@ use support::compare::{assert_matches, expected_image, views, Expected, Worst};
 use support::optics::{beer_lambert, transfer_function};
 use tetray_boundary_bvh::BuildPreset;
 use tetray_integrate::{IntegratorOptions, Method, OpacityMode, ScalarIntegrator};
-use tetray_mesh::{load, LoadOptions, LoadedMesh};
+use tetray_mesh::{load, LoadOptions, LoadedMesh, MeshSummary};
 use tetray_raycast::scenes::{jittered_box, CellSplit, ScalarSpec};
 use tetray_raycast::{relative_to_origin, render_scalar, Camera, Image, RenderOptions, Scene};
 
@@ -126,6 +126,19 @@ fn real_imperfect_samples_load_render_and_report() {
     let changes = ugrid.report.changes().expect("uGridEx is changed on load");
     eprintln!("uGridEx.vtk: {changes}");
     assert!(!ugrid.report.validation.nonconforming_faces.is_empty());
+    // `tetray info` prints the details: which faces, which cells, how much.
+    let text = MeshSummary::new(&ugrid).to_string();
+    assert!(
+        text.contains("non-conforming:  6 faces made boundary"),
+        "{text}"
+    );
+    assert!(text.contains("tetrahedron "), "{text}");
+    let text = MeshSummary::new(&can).to_string();
+    assert!(
+        text.contains("left out:        39 cells (39 tangled"),
+        "{text}"
+    );
+    assert!(text.contains("  cells:         "), "{text}");
     for (name, loaded) in [("can", can), ("uGridEx", ugrid)] {
         let field = loaded.mesh.fields[0].name.clone();
         let scene = Scene::from_loaded(loaded, &field, BuildPreset::default()).unwrap();
