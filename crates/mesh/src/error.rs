@@ -151,6 +151,17 @@ pub enum MeshError {
         vertices: [u32; 3],
     },
 
+    /// Every tetrahedron was left out of the walk (see `exclude.rs`).
+    #[error(
+        "nothing left to render: all {tets} tetrahedra were left out ({flat} flat, the others \
+         in {cells} cells that are tangled, overlap a neighbour or share a face with two others)"
+    )]
+    NothingLeft {
+        tets: usize,
+        flat: usize,
+        cells: usize,
+    },
+
     /// A mesh read from a file failed validation: the file and the reason.
     #[error("{file}: {source}")]
     InFile {

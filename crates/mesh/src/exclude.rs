@@ -96,7 +96,7 @@ enum Reason {
 /// topology, what was left out and how many tetrahedra were reoriented.
 ///
 /// # Errors
-/// [`MeshError::Empty`] when nothing is left; [`MeshError::TooLarge`].
+/// [`MeshError::NothingLeft`] when nothing is left; [`MeshError::TooLarge`].
 pub(crate) fn exclude_bad_cells(
     mesh: &mut TetMesh,
     tet_cells: &[u32],
@@ -142,7 +142,11 @@ pub(crate) fn exclude_bad_cells(
         // Current tetrahedron -> its index as given.
         let original: Vec<usize> = (0..n).filter(|&t| keep(t, &reason)).collect();
         if original.is_empty() {
-            return Err(MeshError::Empty);
+            return Err(MeshError::NothingLeft {
+                tets: n,
+                flat: flat_tets,
+                cells: reason.iter().filter(|r| r.is_some()).count(),
+            });
         }
         mesh.tets = original.iter().map(|&t| given[t]).collect();
         reoriented = mesh.orient();

@@ -209,8 +209,19 @@ fn overlapping_tets_across_a_face() {
         "{e}"
     );
     // The loader leaves both out (the face cannot tell which is wrong):
-    // nothing is left, and an empty mesh is an error.
-    assert!(matches!(err(mesh), MeshError::Empty));
+    // nothing is left, which is an error saying so.
+    let e = err(mesh);
+    assert!(
+        matches!(
+            e,
+            MeshError::NothingLeft {
+                tets: 2,
+                flat: 0,
+                cells: 2
+            }
+        ),
+        "{e}"
+    );
 }
 
 /// A tet above the triangle (p0, p1, p2); below it, the same triangle
