@@ -140,7 +140,7 @@ impl fmt::Display for MeshSummary {
             writeln!(f, "  cells:         {}{more}", shown.join(" "))?;
         }
         if x.flat_tets > 0 {
-            writeln!(f, "flat dropped:    {} tetrahedra (on load)", x.flat_tets)?;
+            writeln!(f, "flat left out:   {} tetrahedra", x.flat_tets)?;
         }
         if !self.nonconforming_faces.is_empty() {
             writeln!(
