@@ -1,11 +1,17 @@
-//! Loading a mesh from a file, ready to render: read, orient, validate,
-//! build the topology.
+//! Loading a mesh from a file, ready to render: read (points relative to
+//! an origin near the mesh, see [`crate::centring_origin`]), leave out the
+//! cells that cannot be walked (`exclude.rs`), orient, validate, build the
+//! topology. What was changed is in the [`LoadReport`].
 
 use std::path::{Path, PathBuf};
 
+use glam::DVec3;
+
+use crate::exclude::{exclude_bad_cells, ExcludedCells};
 use crate::exodus::{read_exodus_file, ElementBlock, ExodusOptions, ExodusRead};
 use crate::plot3d::{read_plot3d_bytes, read_plot3d_files, Plot3dRead};
-use crate::{validate_with_topology, vtk, MeshError, TetMesh, Topology, ValidationReport};
+use crate::validate::{check_input, check_walkable};
+use crate::{vtk, MeshError, TetMesh, Topology, ValidationReport};
 
 /// Options of [`load`].
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -57,7 +63,8 @@ pub struct LoadReport {
     /// Higher-order cells, polyhedra and prisms per VTK type: cells, the
     /// tetrahedra they gave, the points added for them.
     pub subdivided: Vec<vtk::SubdividedCells>,
-    /// Validation findings (components, duplicate points, seams...).
+    /// Validation findings (components, duplicate points, seams,
+    /// non-conforming faces...).
     pub validation: ValidationReport,
     /// The times the file stores, one per time step (Exodus II; empty for
     /// the other formats).
@@ -66,6 +73,56 @@ pub struct LoadReport {
     pub time_step: Option<usize>,
     /// The file's element blocks, kept or skipped (Exodus II).
     pub blocks: Vec<ElementBlock>,
+    /// The points are stored relative to this origin: a point's coordinates
+    /// in the file are `origin + point` (zero unless the mesh lies far from
+    /// zero; see [`crate::centring_origin`]). Cameras given in the file's
+    /// coordinates subtract it.
+    pub origin: DVec3,
+    /// Cells left out of the walk (tangled, overlapping) and flat
+    /// tetrahedra dropped.
+    pub excluded: ExcludedCells,
+}
+
+impl LoadReport {
+    /// One line saying what loading changed in the mesh (non-conforming
+    /// faces made boundary, cells left out with their volume share, the
+    /// origin shift), or `None` when it changed nothing of the geometry.
+    pub fn changes(&self) -> Option<String> {
+        let mut parts = Vec::new();
+        let v = &self.validation;
+        if !v.nonconforming_faces.is_empty() {
+            parts.push(format!(
+                "{} non-conforming faces made boundary ({} hanging nodes, {} pairs of faces split \
+                 differently)",
+                v.nonconforming_faces.len(),
+                v.hanging_nodes,
+                v.folded_face_pairs
+            ));
+        }
+        let x = &self.excluded;
+        if !x.cells.is_empty() {
+            parts.push(format!(
+                "{} cells left out ({} tangled, {} overlapping, {} non-manifold; {:.4}% of the \
+                 volume)",
+                x.cells.len(),
+                x.tangled,
+                x.overlapping,
+                x.non_manifold,
+                100.0 * x.volume_share
+            ));
+        }
+        if x.flat_tets > 0 {
+            parts.push(format!("{} flat tetrahedra dropped", x.flat_tets));
+        }
+        if self.origin != DVec3::ZERO {
+            let o = self.origin;
+            parts.push(format!(
+                "points stored relative to the origin ({}, {}, {})",
+                o.x, o.y, o.z
+            ));
+        }
+        (!parts.is_empty()).then(|| format!("mesh changed on load: {}", parts.join("; ")))
+    }
 }
 
 /// A mesh ready to render: positively oriented, validated, with its
@@ -75,6 +132,14 @@ pub struct LoadedMesh {
     pub mesh: TetMesh,
     pub topology: Topology,
     pub report: LoadReport,
+}
+
+impl LoadedMesh {
+    /// Where the stored points are relative to the file's coordinates
+    /// (see [`LoadReport::origin`]).
+    pub fn origin(&self) -> DVec3 {
+        self.report.origin
+    }
 }
 
 /// The file formats [`load`] recognises by name.
@@ -245,6 +310,9 @@ struct Read {
     pieces: vtk::PieceCounts,
     points_added: usize,
     subdivided: Vec<vtk::SubdividedCells>,
+    origin: DVec3,
+    /// Per tetrahedron, the cell it came from (empty: each its own).
+    tet_cells: Vec<u32>,
 }
 
 fn from_vtk(read: vtk::VtkRead, format: &'static str) -> Read {
@@ -258,6 +326,8 @@ fn from_vtk(read: vtk::VtkRead, format: &'static str) -> Read {
         points_added: c.points_added,
         subdivided: c.subdivided,
         pieces: read.pieces,
+        origin: read.origin,
+        tet_cells: read.tet_cells,
         ..Read::default()
     }
 }
@@ -285,15 +355,29 @@ fn from_exodus(read: ExodusRead) -> Read {
         times: read.times,
         time_step: read.time_step,
         blocks: read.blocks,
+        origin: read.origin,
+        tet_cells: read.tet_cells,
         ..Read::default()
     }
 }
 
+/// PLOT3D grids are read in f32 (most are single precision); they are
+/// centred like the others, the subtraction done in f64.
 fn from_plot3d(read: Plot3dRead) -> Read {
     let hexahedra = read.hexahedra - read.blanked_hexahedra;
+    let mut mesh = read.mesh;
+    let origin = crate::geometry::bounds_f64(mesh.points.iter().map(|p| p.as_dvec3()))
+        .map_or(DVec3::ZERO, |(lo, hi)| crate::centring_origin(lo, hi));
+    if origin != DVec3::ZERO {
+        for p in &mut mesh.points {
+            *p = (p.as_dvec3() - origin).as_vec3();
+        }
+    }
     Read {
-        tets_from_split: read.mesh.tets.len(),
-        mesh: read.mesh,
+        tets_from_split: mesh.tets.len(),
+        mesh,
+        origin,
+        tet_cells: Vec::new(),
         format: "PLOT3D",
         warnings: read.warnings,
         degenerate_dropped: read.degenerate_dropped,
@@ -304,9 +388,12 @@ fn from_plot3d(read: Plot3dRead) -> Read {
 }
 
 fn finish(mut read: Read) -> Result<LoadedMesh, MeshError> {
-    read.inverted_fixed += read.mesh.orient();
-    let (validation, topology) = validate_with_topology(&read.mesh)?;
+    check_input(&read.mesh)?;
+    let (topology, excluded, reoriented) = exclude_bad_cells(&mut read.mesh, &read.tet_cells)?;
+    read.inverted_fixed += reoriented;
+    let validation = check_walkable(&read.mesh, &topology)?;
     let mut warnings = read.warnings;
+    warnings.extend(excluded.warnings());
     warnings.extend(validation.warnings.iter().cloned());
     Ok(LoadedMesh {
         mesh: read.mesh,
@@ -325,6 +412,8 @@ fn finish(mut read: Read) -> Result<LoadedMesh, MeshError> {
             times: read.times,
             time_step: read.time_step,
             blocks: read.blocks,
+            origin: read.origin,
+            excluded,
         },
     })
 }

@@ -94,7 +94,8 @@ fn load_model(model: &Model, file: &str, linearize: Linearize) -> LoadedMesh {
 /// the edge's corners).
 fn check(loaded: &LoadedMesh, mid_edge: &[[f64; 3]], volume: f64, area: f64) {
     let mesh = &loaded.mesh;
-    let at = |i: u32| mesh.points[i as usize].as_dvec3().to_array();
+    let origin = loaded.report.origin;
+    let at = |i: u32| (mesh.points[i as usize].as_dvec3() + origin).to_array();
     let mut faces: HashMap<[u32; 3], usize> = HashMap::new();
     let mut filled = 0.0;
     for t in &mesh.tets {

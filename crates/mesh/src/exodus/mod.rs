@@ -77,6 +77,13 @@ pub struct ExodusRead {
     pub blocks: Vec<ElementBlock>,
     /// The netCDF container ("Cdf1", "Nc4"...).
     pub container: String,
+    /// The points are stored relative to this origin (f64; see
+    /// [`crate::centring_origin`]): a node's coordinates in the file are
+    /// `origin + point`.
+    pub origin: glam::DVec3,
+    /// Per tetrahedron, the 0-based number of the element it was split
+    /// from, counted across all element blocks (skipped blocks included).
+    pub tet_cells: Vec<u32>,
 }
 
 /// Reads an Exodus II file.
@@ -118,5 +125,7 @@ fn read(bytes: Vec<u8>, name: &str, opts: &ExodusOptions) -> Result<ExodusRead, 
         time_step: meta.time_step,
         blocks: meta.blocks,
         container: meta.container,
+        origin: read.origin,
+        tet_cells: read.tet_cells,
     })
 }

@@ -5,13 +5,13 @@
 
 use std::collections::BTreeMap;
 
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 
 use super::added_points::AddedPoints;
 use super::cells::{classify, type_name, CellKind};
 use super::poly_grid::{checked_faces, separate_inline_faces};
 use super::polyhedron::{prism_faces, split_polyhedron, PolyhedronFaces};
-use super::split::split_cell;
+use super::split::{hexahedron_cones, split_cell};
 use super::split_quadratic::{subdivide, Subdivision};
 use super::{CellCounts, PieceCounts, ReadOptions, SubdividedCells, VtkError, VtkRead};
 use crate::{ScalarField, TetMesh};
@@ -56,6 +56,34 @@ pub(crate) struct RawGrid {
     pub global_ids: Option<String>,
     /// Pieces, welding and ghost cells, for the load report.
     pub pieces: PieceCounts,
+    /// The number of each cell in the file(s) read, for reports of cells
+    /// left out (empty: each cell's index). It differs from the index once
+    /// cells are dropped or grids joined: a file's cells are numbered as it
+    /// lists them, ghost and hidden cells included; the cells of joined
+    /// pieces and blocks are numbered on from those of the pieces before
+    /// them, in the order the parallel or multi-block file names them (see
+    /// `pieces.rs`); Exodus elements by their 0-based number across all
+    /// element blocks, skipped blocks included.
+    pub cell_numbers: Vec<u32>,
+    /// How many cells the numbering spans (the cells read, dropped ones
+    /// included); only meaningful when `cell_numbers` is not empty.
+    pub cells_numbered: usize,
+}
+
+impl RawGrid {
+    /// The number of cell `c` in the file(s) read (see `cell_numbers`).
+    pub(crate) fn cell_number(&self, c: usize) -> u32 {
+        self.cell_numbers.get(c).copied().unwrap_or(c as u32)
+    }
+
+    /// How many cell numbers the grid spans, dropped cells included.
+    pub(crate) fn numbered_cells(&self) -> usize {
+        if self.cell_numbers.is_empty() {
+            self.types.len()
+        } else {
+            self.cells_numbered
+        }
+    }
 }
 
 /// Checks what the reader can see, splits the cells and builds the mesh.
@@ -73,7 +101,8 @@ pub(crate) fn assemble_with(
             value: npoints.to_string(),
         });
     }
-    let mut points = finite_points(&grid.points, &grid.points_section, file)?;
+    let origin = centring(&grid.points);
+    let mut points = finite_points(&grid.points, origin, &grid.points_section, file)?;
     separate_inline_faces(&mut grid, file)?;
     let mut warnings = std::mem::take(&mut grid.warnings);
     let cells = CellTable::new(
@@ -86,10 +115,12 @@ pub(crate) fn assemble_with(
 
     let mut tets = Vec::new();
     let mut added = AddedPoints::new(npoints);
+    let mut tet_cells = Vec::new();
     let mut counts = CellCounts::default();
     let mut subdivided: BTreeMap<i64, SubdividedCells> = BTreeMap::new();
     let mut lower_dim: BTreeMap<i64, usize> = BTreeMap::new();
     let mut dropped = 0;
+    let mut resplit = 0;
     let mut volume_cell = vec![false; cells.len()];
     for (c, &type_id) in grid.types.iter().enumerate() {
         let ids = cells.cell(c);
@@ -142,9 +173,24 @@ pub(crate) fn assemble_with(
                 };
                 dropped += split_polyhedron(&faces, &mut added, &mut tets);
             }
-            _ => dropped += split_cell(kind, ids, &mut tets),
+            _ => {
+                dropped += split_cell(kind, ids, &mut tets);
+                if kind == CellKind::Hexahedron
+                    && !one_orientation(&tets[tets_before..], &grid.points)
+                {
+                    let cones = hexahedron_cones(ids);
+                    if let Some(better) =
+                        cones.into_iter().find(|c| one_orientation(c, &grid.points))
+                    {
+                        tets.truncate(tets_before);
+                        tets.extend(better);
+                        resplit += 1;
+                    }
+                }
+            }
         }
         let made = tets.len() - tets_before;
+        tet_cells.resize(tets.len(), grid.cell_number(c));
         match kind {
             CellKind::Tetra => counts.tetra += 1,
             CellKind::Hexahedron => counts.hexahedra += 1,
@@ -182,7 +228,12 @@ pub(crate) fn assemble_with(
     added.extend(&mut grid.points, 3);
     // Interpolation weights below 0 extrapolate: recheck the new points.
     let section = format!("{} (points added by the splits)", grid.points_section);
-    points.extend(finite_points(&grid.points[3 * npoints..], &section, file)?);
+    points.extend(finite_points(
+        &grid.points[3 * npoints..],
+        origin,
+        &section,
+        file,
+    )?);
     counts.skipped_lower_dim = lower_dim.values().sum();
     if counts.skipped_lower_dim > 0 {
         let per_type: Vec<String> = lower_dim
@@ -193,6 +244,12 @@ pub(crate) fn assemble_with(
             "skipped {} lower-dimensional cells: {}",
             counts.skipped_lower_dim,
             per_type.join(", ")
+        ));
+    }
+    if resplit > 0 {
+        warnings.push(format!(
+            "{resplit} distorted hexahedra split from another corner (same face diagonals, so \
+             still conforming): the default split made tetrahedra of both orientations"
         ));
     }
     if dropped > 0 {
@@ -259,6 +316,8 @@ pub(crate) fn assemble_with(
         cells: counts,
         dataset: grid.dataset,
         pieces: grid.pieces,
+        origin,
+        tet_cells,
     })
 }
 
@@ -285,25 +344,70 @@ fn mask_cells(
         .collect())
 }
 
-/// The points as f32, each coordinate finite (point `i` of `xyz` is named
-/// as such in errors).
-fn finite_points(xyz: &[f64], section: &str, file: &str) -> Result<Vec<Vec3>, VtkError> {
+/// The origin the points are stored relative to ([`crate::centring_origin`]:
+/// the centre of their bounds when they lie far from zero; `xyz` holds x,
+/// y, z per point, in f64 as read).
+fn centring(xyz: &[f64]) -> DVec3 {
+    let wide = |p: &[f64]| DVec3::new(p[0], p[1], p[2]);
+    crate::geometry::bounds_f64(xyz.chunks_exact(3).map(wide))
+        .map_or(DVec3::ZERO, |(lo, hi)| crate::centring_origin(lo, hi))
+}
+
+/// The points relative to `origin`, computed in f64 and only then rounded
+/// to f32. A coordinate that is not finite, or beyond f32's range, is an
+/// error (as every value read).
+fn finite_points(
+    xyz: &[f64],
+    origin: DVec3,
+    section: &str,
+    file: &str,
+) -> Result<Vec<Vec3>, VtkError> {
+    let not_finite = |i: usize, axis: usize, value: f64| VtkError::NonFinite {
+        file: file.into(),
+        section: format!("{section}, point {i} coordinate {}", ["x", "y", "z"][axis]),
+        index: 3 * i + axis,
+        value,
+    };
+    if let Some(at) = xyz.iter().position(|&v| !(v as f32).is_finite()) {
+        return Err(not_finite(at / 3, at % 3, xyz[at]));
+    }
+    let wide = |p: &[f64]| DVec3::new(p[0], p[1], p[2]);
     let mut points = Vec::with_capacity(xyz.len() / 3);
     for (i, p) in xyz.chunks_exact(3).enumerate() {
-        let q = Vec3::new(p[0] as f32, p[1] as f32, p[2] as f32);
-        for (axis, (&wide, narrow)) in p.iter().zip(q.to_array()).enumerate() {
-            if !narrow.is_finite() {
-                return Err(VtkError::NonFinite {
-                    file: file.into(),
-                    section: format!("{section}, point {i} coordinate {}", ["x", "y", "z"][axis]),
-                    index: 3 * i + axis,
-                    value: wide,
-                });
-            }
+        let q = (wide(p) - origin).as_vec3();
+        if let Some(axis) = (0..3).find(|&a| !q[a].is_finite()) {
+            return Err(not_finite(i, axis, p[axis]));
         }
         points.push(q);
     }
     Ok(points)
+}
+
+/// Whether the tetrahedra (of one cell) all have the same strict
+/// orientation on the file's f64 points (`xyz`: x, y, z per point): all
+/// positive for a well-shaped cell, all negative for one listed inverted.
+/// Volumes are taken relative to each tetrahedron's first point, so far
+/// coordinates lose nothing of the cell's shape.
+fn one_orientation(tets: &[[u32; 4]], xyz: &[f64]) -> bool {
+    let point = |i: u32| {
+        let i = 3 * i as usize;
+        DVec3::new(xyz[i], xyz[i + 1], xyz[i + 2])
+    };
+    let mut signs = tets.iter().map(|t| {
+        let p = t.map(point);
+        let v = (p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0]));
+        if v > 0.0 {
+            1
+        } else if v < 0.0 {
+            -1
+        } else {
+            0
+        }
+    });
+    let Some(first) = signs.next() else {
+        return true;
+    };
+    first != 0 && signs.all(|s| s == first)
 }
 
 /// Checks an array has `tuples` tuples.

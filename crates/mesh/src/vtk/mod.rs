@@ -77,6 +77,15 @@ pub struct VtkRead {
     /// when they differ).
     pub dataset: &'static str,
     pub pieces: PieceCounts,
+    /// The points are stored relative to this origin (f64; see
+    /// [`crate::centring_origin`]): a point's coordinates as in the file
+    /// are `origin + point`.
+    pub origin: glam::DVec3,
+    /// Per tetrahedron, the index of the file's cell it was split from
+    /// (ghost and lower-dimensional cells counted; for pieces and blocks,
+    /// each piece's cells numbered on from those of the pieces before it,
+    /// in the order the file names them).
+    pub tet_cells: Vec<u32>,
 }
 
 /// What joining pieces and blocks did (zero for a single serial file

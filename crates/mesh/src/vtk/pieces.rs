@@ -128,6 +128,12 @@ fn cell_points(grid: &RawGrid, c: usize) -> impl Iterator<Item = i64> + '_ {
 }
 
 fn keep_cells(grid: &mut RawGrid, keep: &[bool]) {
+    let numbers: Vec<u32> = (0..keep.len())
+        .filter(|&c| keep[c])
+        .map(|c| grid.cell_number(c))
+        .collect();
+    grid.cells_numbered = grid.numbered_cells();
+    grid.cell_numbers = numbers;
     let mut offsets = vec![0];
     let mut connectivity = Vec::with_capacity(grid.connectivity.len());
     let mut types = Vec::new();
@@ -278,6 +284,12 @@ pub(crate) fn weld(grids: Vec<RawGrid>, file: &str) -> Result<RawGrid, VtkError>
             .extend(shift_faces(faces, out.types.len(), to_joined));
         out.offsets
             .extend(grid.offsets.iter().skip(1).map(|&o| start + o));
+        // A piece's cells are numbered on from all the cells (ghost and
+        // hidden ones included) of the pieces before it.
+        let numbered = out.cells_numbered as u32;
+        out.cell_numbers
+            .extend((0..grid.types.len()).map(|c| numbered + grid.cell_number(c)));
+        out.cells_numbered += grid.numbered_cells();
         out.types.extend_from_slice(&grid.types);
         if npoints > 0 {
             let arrays = grid
