@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 use tetray_boundary_bvh::BuildPreset;
 use tetray_integrate::{Method, OpacityMode};
 use tetray_project::SortKind;
@@ -33,6 +33,28 @@ pub struct MeshArgs {
     /// or a path of names such as outer/inner). Default: every volume block.
     #[arg(long, value_name = "NAME")]
     pub block: Option<String>,
+    /// Quadratic and order-2 Lagrange cells: subdivide them into linear
+    /// tetrahedra through all their nodes, or keep their corners only (as
+    /// VTK's unstructured volume mappers do).
+    #[arg(long, value_enum, default_value_t = LinearizeArg::Subdivide)]
+    pub linearize: LinearizeArg,
+}
+
+/// `--linearize`: see [`tetray_mesh::vtk::Linearize`].
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, ValueEnum)]
+pub enum LinearizeArg {
+    #[default]
+    Subdivide,
+    Corners,
+}
+
+impl From<LinearizeArg> for tetray_mesh::vtk::Linearize {
+    fn from(arg: LinearizeArg) -> Self {
+        match arg {
+            LinearizeArg::Subdivide => tetray_mesh::vtk::Linearize::Subdivide,
+            LinearizeArg::Corners => tetray_mesh::vtk::Linearize::Corners,
+        }
+    }
 }
 
 /// VTK/ParaView camera. Whatever is not given comes from a
@@ -41,12 +63,13 @@ pub struct MeshArgs {
 /// ([`DEFAULT_VIEW`]).
 #[derive(Debug, Clone, Default, Args)]
 pub struct CameraArgs {
-    /// Camera position x,y,z (world units).
-    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
-    pub camera_position: Option<Vec3>,
-    /// Focal point x,y,z (world units).
-    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
-    pub focal_point: Option<Vec3>,
+    /// Camera position x,y,z (world units: the file's coordinates, read in
+    /// f64; the origin the mesh is stored relative to is subtracted).
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_dvec3, allow_hyphen_values = true)]
+    pub camera_position: Option<DVec3>,
+    /// Focal point x,y,z (world units, as --camera-position).
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_dvec3, allow_hyphen_values = true)]
+    pub focal_point: Option<DVec3>,
     /// View-up vector x,y,z.
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
     pub view_up: Option<Vec3>,
@@ -284,6 +307,23 @@ pub fn parse_vec3(text: &str) -> Result<Vec3, String> {
     }
 }
 
+/// `x,y,z` in f64 (positions in a file's coordinates, which may be far
+/// from zero).
+pub fn parse_dvec3(text: &str) -> Result<DVec3, String> {
+    let parts: Vec<f64> = text
+        .split(',')
+        .map(|part| match part.trim().parse::<f64>() {
+            Ok(v) if v.is_finite() => Ok(v),
+            Ok(v) => Err(format!("{v} is not finite in {text:?}")),
+            Err(_) => Err(format!("{:?} is not a number in {text:?}", part.trim())),
+        })
+        .collect::<Result<_, _>>()?;
+    match parts.as_slice() {
+        [x, y, z] => Ok(DVec3::new(*x, *y, *z)),
+        _ => Err(format!("expected three numbers x,y,z, got {text:?}")),
+    }
+}
+
 /// `r,g,b` or one value for all three channels, each finite and >= 0.
 pub fn parse_rgb(text: &str) -> Result<Vec3, String> {
     let rgb = match parse_floats(text)?.as_slice() {
@@ -402,6 +442,12 @@ mod tests {
         assert!(parse_rgb("1,2").is_err());
         assert!(parse_rgb("-1").unwrap_err().contains("negative"));
         assert_eq!(parse_vec3("-1,2,3"), Ok(Vec3::new(-1.0, 2.0, 3.0)));
+        assert_eq!(
+            parse_dvec3("7000000.25,-1,3"),
+            Ok(DVec3::new(7000000.25, -1.0, 3.0))
+        );
+        assert!(parse_dvec3("1,inf,3").unwrap_err().contains("not finite"));
+        assert!(parse_dvec3("1,2").unwrap_err().contains("three numbers"));
         assert!(parse_vec3("1,nan,3").unwrap_err().contains("not finite"));
         assert!(parse_vec3("1,x,3").unwrap_err().contains("not a number"));
         assert!(parse_positive("0").is_err());

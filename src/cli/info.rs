@@ -75,12 +75,24 @@ struct InfoJson<'a> {
     welded_points: usize,
     ghost_cells_dropped: usize,
     hidden_cells_dropped: usize,
-    /// Multi-block files: volume blocks read and blocks skipped.
-    datasets_read: usize,
-    datasets_skipped: usize,
+    /// Multi-block leaves read and skipped (`.vtm`; 0 otherwise); the
+    /// Exodus element blocks are `blocks`.
+    blocks_read: usize,
+    blocks_skipped: usize,
     duplicate_points: usize,
     unused_points: usize,
     seam_faces: usize,
+    /// The stored points (and `bounds`) are relative to this origin: file
+    /// coordinates = origin + point.
+    origin: [f64; 3],
+    /// Points on another tetrahedron's face or edge (hanging nodes).
+    hanging_nodes: usize,
+    /// Pairs of boundary faces split differently on the two sides.
+    folded_face_pairs: usize,
+    /// The unmatched faces made boundary, both sides.
+    nonconforming_faces: Vec<FaceJson>,
+    /// Cells left out of the walk.
+    excluded: ExcludedJson<'a>,
     /// ParaView's default opacity unit distance for this dataset.
     paraview_unit_distance: f32,
     load_seconds: f64,
@@ -104,6 +116,26 @@ struct BlockJson<'a> {
     nodes_per_element: usize,
     cells: usize,
     kept: bool,
+}
+
+#[derive(Debug, Serialize)]
+struct FaceJson {
+    tet: u32,
+    local_face: u8,
+    vertices: [u32; 3],
+}
+
+#[derive(Debug, Serialize)]
+struct ExcludedJson<'a> {
+    /// File cell indices (VTK) or tetrahedron indices as given.
+    cells: &'a [u32],
+    tangled: usize,
+    overlapping: usize,
+    non_manifold: usize,
+    tets: usize,
+    volume: f64,
+    volume_share: f64,
+    flat_tets: usize,
 }
 
 #[derive(Debug, Serialize)]
@@ -161,11 +193,33 @@ pub fn run(args: &InfoArgs) -> anyhow::Result<()> {
             welded_points: summary.pieces.welded_points,
             ghost_cells_dropped: summary.pieces.ghost_cells_dropped,
             hidden_cells_dropped: summary.pieces.hidden_cells_dropped,
-            datasets_read: summary.pieces.blocks,
-            datasets_skipped: summary.pieces.blocks_skipped,
+            blocks_read: summary.pieces.blocks,
+            blocks_skipped: summary.pieces.blocks_skipped,
             duplicate_points: validation.duplicate_points,
             unused_points: validation.unused_points,
             seam_faces: validation.seam_faces,
+            origin: summary.origin.to_array(),
+            hanging_nodes: validation.hanging_nodes,
+            folded_face_pairs: validation.folded_face_pairs,
+            nonconforming_faces: validation
+                .nonconforming_faces
+                .iter()
+                .map(|f| FaceJson {
+                    tet: f.tet,
+                    local_face: f.local_face,
+                    vertices: f.vertices,
+                })
+                .collect(),
+            excluded: ExcludedJson {
+                cells: &summary.excluded.cells,
+                tangled: summary.excluded.tangled,
+                overlapping: summary.excluded.overlapping,
+                non_manifold: summary.excluded.non_manifold,
+                tets: summary.excluded.tets,
+                volume: summary.excluded.volume,
+                volume_share: summary.excluded.volume_share,
+                flat_tets: summary.excluded.flat_tets,
+            },
             paraview_unit_distance: input.paraview_unit_distance(),
             load_seconds: input.load_time.as_secs_f64(),
             valid: true,

@@ -5,12 +5,12 @@
 use std::time::{Duration, Instant};
 
 use anyhow::{bail, Context};
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 use tetray_integrate::{
     ColorPoint, IntegratorOptions, Method, OpacityPoint, ScalarIntegrator, TransferFunction,
 };
 use tetray_mesh::{default_field, mean_tet_chord, value_range, LoadedMesh, ScalarField};
-use tetray_raycast::{Camera, Scene};
+use tetray_raycast::{relative_to_origin, Camera, Scene};
 
 use super::args::{CameraArgs, IntegratorArgs, MeshArgs, WalkArgs};
 
@@ -43,8 +43,22 @@ impl MeshInput {
     pub fn describe(&self) -> String {
         let (mesh, report) = (&self.loaded.mesh, &self.loaded.report);
         let split = if report.cells_split > 0 {
+            let per_type: Vec<String> = report
+                .subdivided
+                .iter()
+                .map(|s| format!("{} {} (type {})", s.cells, s.name, s.type_id))
+                .collect();
+            let detail = if per_type.is_empty() {
+                String::new()
+            } else {
+                format!(
+                    ", among them {}; {} points added",
+                    per_type.join(", "),
+                    report.points_added
+                )
+            };
             format!(
-                " ({} cells split into {})",
+                " ({} cells split into {}{detail})",
                 report.cells_split, report.tets_from_split
             )
         } else {
@@ -100,6 +114,7 @@ pub fn load_mesh(args: &MeshArgs) -> anyhow::Result<MeshInput> {
                 time_step: args.time_step,
                 time: args.time,
                 block: args.block.clone(),
+                linearize: args.linearize.into(),
             };
             let loaded = tetray_mesh::load(path, &options)?;
             let timed = args.time_step.is_some() || args.time.is_some();
@@ -179,6 +194,10 @@ pub fn prepare(frame: FrameArgs<'_>, log: &dyn Fn(String)) -> anyhow::Result<Set
     };
     let input = load_mesh(mesh_args)?;
     log(input.describe());
+    if let Some(changes) = input.loaded.report.changes() {
+        log(changes);
+    }
+    let origin = input.loaded.origin();
     for warning in &input.loaded.report.warnings {
         eprintln!("warning: {warning}");
     }
@@ -216,7 +235,7 @@ pub fn prepare(frame: FrameArgs<'_>, log: &dyn Fn(String)) -> anyhow::Result<Set
         scene_time.as_secs_f64()
     ));
 
-    let camera = build_camera(camera_args, scene.bounds(), size)?;
+    let camera = build_camera(camera_args, scene.bounds(), size, origin)?;
     warn_if_inside(&camera, scene.bounds());
 
     let (lo, hi) = value_range(&scene.scalar);
@@ -359,12 +378,17 @@ fn table_note(integrator: &ScalarIntegrator, options: &IntegratorOptions) -> Str
 /// The camera: VTK's ResetCamera fit of `bounds` for a `width x height`
 /// image (looking down -z, or along the given position and focal point),
 /// the given values, then azimuth, elevation (the oblique default when no
-/// camera flag is given) and OrthogonalizeViewUp.
+/// camera flag is given) and OrthogonalizeViewUp. A
+/// given position and focal point are in the file's coordinates: the
+/// mesh's `origin` is subtracted (in f64).
 fn build_camera(
     args: &CameraArgs,
     (lo, hi): (Vec3, Vec3),
     (width, height): (u32, u32),
+    origin: DVec3,
 ) -> anyhow::Result<Camera> {
+    let position = args.camera_position.map(|p| relative_to_origin(p, origin));
+    let focal_point = args.focal_point.map(|p| relative_to_origin(p, origin));
     let mut camera = Camera {
         view_angle: args.view_angle,
         parallel_scale: args.parallel_scale,
@@ -373,7 +397,7 @@ fn build_camera(
     if let Some(up) = args.view_up {
         camera.view_up = up;
     }
-    match (args.camera_position, args.focal_point) {
+    match (position, focal_point) {
         (Some(position), Some(focal_point)) => {
             camera.position = position;
             camera.focal_point = focal_point;

@@ -1,5 +1,8 @@
-//! Conformity: tetrahedra must meet face to face. Where they do not, faces
-//! are left unmatched inside the mesh and a face-to-face walk stops there:
+//! Conformity: where tetrahedra do not meet face to face, faces are left
+//! unmatched inside the mesh. They are boundary faces of the topology, and a
+//! ray leaving through one re-enters through the coincident face(s) of the
+//! other side by the boundary BVH, exactly as at a seam: the image is that
+//! of a conforming mesh. Validation reports them (warnings), found as:
 //! - a hanging node (a T-junction): a point of one tetrahedron lies on an
 //!   edge or inside a face of another;
 //! - two sides of a shared quadrilateral split along different diagonals.
@@ -9,10 +12,11 @@
 //! by edge (as many i->j as j->i: that holds for the boundary of any set of
 //! tetrahedra whose matched faces have opposite orientations, which
 //! validation checks). The tests are geometric instead, within f32
-//! resolution: no boundary point may lie on a boundary face unless it is
-//! one of its corners (possibly through a duplicate point, as on a seam),
-//! and no two boundary faces sharing an edge may lie folded onto each other
-//! (unless they coincide through duplicate points: a seam).
+//! resolution: a boundary point lying on a boundary face that does not
+//! have it as a corner (possibly through a duplicate point, as on a seam),
+//! and two boundary faces sharing an edge and folded onto each other
+//! (unless they coincide through duplicate points: a seam). Nothing here
+//! changes the walk; it only names the faces for the load report.
 
 use glam::DVec3;
 use rayon::prelude::*;
@@ -160,17 +164,18 @@ fn on_triangle(p: DVec3, t: [DVec3; 3], tol: f64) -> Option<bool> {
     inside.then_some(false)
 }
 
-/// The first boundary point (lowest index) lying on a boundary face that
-/// does not have it as a corner. `canonical` maps each point to the lowest
-/// index with the same coordinates.
-pub(crate) fn find_hanging_node(
+/// Every boundary point lying on a boundary face that does not have it as
+/// a corner, once per such face, by point index.
+/// `canonical` maps each point to the lowest index with the same
+/// coordinates.
+pub(crate) fn find_hanging_nodes(
     mesh: &TetMesh,
     topology: &Topology,
     canonical: &[u32],
-) -> Option<HangingNode> {
+) -> Vec<HangingNode> {
     let faces = &topology.boundary_faces;
     if faces.is_empty() {
-        return None;
+        return Vec::new();
     }
     let point = |i: u32| mesh.points[i as usize].as_dvec3();
     let corners: Vec<[DVec3; 3]> = faces.iter().map(|f| f.vertices.map(point)).collect();
@@ -185,39 +190,51 @@ pub(crate) fn find_hanging_node(
             .iter()
             .flatten()
             .fold(0.0, |m: f64, c| m.max(c.abs().max_element()));
-    points.par_iter().find_map_first(|&v| {
-        let p = point(v);
-        let mut found = None;
-        tree.any_near(p, box_tol, |f| {
-            let face = faces[f as usize];
-            if face
-                .vertices
-                .iter()
-                .any(|&c| canonical[c as usize] == canonical[v as usize])
-            {
-                return false;
-            }
-            let t = corners[f as usize];
-            let scale = t
-                .iter()
-                .fold(p.abs().max_element(), |m, c| m.max(c.abs().max_element()));
-            match on_triangle(p, t, ulp * scale) {
-                Some(on_edge) => {
-                    found = Some(HangingNode {
-                        point: v,
-                        face,
-                        on_edge,
-                    });
-                    true
-                }
-                None => false,
-            }
-        });
-        found
-    })
+    points
+        .par_iter()
+        .flat_map_iter(|&v| hanging_at(v, point(v), faces, &corners, &tree, canonical, box_tol))
+        .collect()
 }
 
-/// The first pair of boundary faces (in edge order) that share an edge and
+/// Every boundary face (within `box_tol` of `p`) that point `v` lies on
+/// without being its corner.
+fn hanging_at(
+    v: u32,
+    p: DVec3,
+    faces: &[BoundaryFace],
+    corners: &[[DVec3; 3]],
+    tree: &FaceTree,
+    canonical: &[u32],
+    box_tol: f64,
+) -> Vec<HangingNode> {
+    let ulp = DEGENERATE_HEIGHT_ULPS * f64::from(f32::EPSILON);
+    let mut found = Vec::new();
+    tree.any_near(p, box_tol, |f| {
+        let face = faces[f as usize];
+        if face
+            .vertices
+            .iter()
+            .any(|&c| canonical[c as usize] == canonical[v as usize])
+        {
+            return false;
+        }
+        let t = corners[f as usize];
+        let scale = t
+            .iter()
+            .fold(p.abs().max_element(), |m, c| m.max(c.abs().max_element()));
+        if let Some(on_edge) = on_triangle(p, t, ulp * scale) {
+            found.push(HangingNode {
+                point: v,
+                face,
+                on_edge,
+            });
+        }
+        false
+    });
+    found
+}
+
+/// Every pair of boundary faces (in edge order) that share an edge and
 /// lie folded onto each other: coplanar within f32 resolution, with their
 /// third points on the same side of the edge. Pairs whose third points
 /// coincide (`canonical`) are seams and pass.
@@ -225,7 +242,7 @@ pub(crate) fn find_folded_faces(
     mesh: &TetMesh,
     topology: &Topology,
     canonical: &[u32],
-) -> Option<FoldedFaces> {
+) -> Vec<FoldedFaces> {
     let faces = &topology.boundary_faces;
     let mut edges: Vec<(u64, u32)> = faces
         .par_iter()
@@ -245,38 +262,124 @@ pub(crate) fn find_folded_faces(
         .chunk_by(|a, b| a.0 == b.0)
         .filter(|r| r.len() > 1)
         .collect();
-    runs.par_iter().find_map_first(|run| {
-        let edge = [(run[0].0 >> 32) as u32, run[0].0 as u32];
-        let apex = |b: u32| {
-            let face = faces[b as usize];
-            face.vertices
-                .into_iter()
-                .find(|v| !edge.contains(v))
-                .unwrap_or(face.vertices[0])
-        };
-        let (u, v) = (point(edge[0]), point(edge[1]));
-        for (x, &(_, fa)) in run.iter().enumerate() {
-            for &(_, fb) in &run[x + 1..] {
-                let (a, b) = (apex(fa), apex(fb));
-                if canonical[a as usize] == canonical[b as usize] {
-                    continue;
+    let mut found: Vec<FoldedFaces> = runs
+        .par_iter()
+        .flat_map_iter(|run| {
+            let mut pairs = Vec::new();
+            let edge = [(run[0].0 >> 32) as u32, run[0].0 as u32];
+            let apex = |b: u32| {
+                let face = faces[b as usize];
+                face.vertices
+                    .into_iter()
+                    .find(|v| !edge.contains(v))
+                    .unwrap_or(face.vertices[0])
+            };
+            let (u, v) = (point(edge[0]), point(edge[1]));
+            for (x, &(_, fa)) in run.iter().enumerate() {
+                for &(_, fb) in &run[x + 1..] {
+                    let (a, b) = (apex(fa), apex(fb));
+                    if canonical[a as usize] == canonical[b as usize] {
+                        continue;
+                    }
+                    let (pa, pb) = (point(a), point(b));
+                    let normal = (v - u).cross(pa - u);
+                    let len = normal.length();
+                    let scale = [u, v, pa, pb]
+                        .iter()
+                        .fold(0.0, |m: f64, p| m.max(p.abs().max_element()));
+                    let coplanar = len > 0.0 && (pb - u).dot(normal).abs() <= ulp * scale * len;
+                    let across = normal.cross(v - u);
+                    if coplanar && (pa - u).dot(across) * (pb - u).dot(across) > 0.0 {
+                        pairs.push(FoldedFaces {
+                            edge,
+                            faces: [faces[fa as usize], faces[fb as usize]],
+                        });
+                    }
                 }
-                let (pa, pb) = (point(a), point(b));
-                let normal = (v - u).cross(pa - u);
-                let len = normal.length();
-                let scale = [u, v, pa, pb]
-                    .iter()
-                    .fold(0.0, |m: f64, p| m.max(p.abs().max_element()));
-                let coplanar = len > 0.0 && (pb - u).dot(normal).abs() <= ulp * scale * len;
-                let across = normal.cross(v - u);
-                if coplanar && (pa - u).dot(across) * (pb - u).dot(across) > 0.0 {
-                    return Some(FoldedFaces {
-                        edge,
-                        faces: [faces[fa as usize], faces[fb as usize]],
-                    });
+            }
+            pairs
+        })
+        .collect();
+    found.sort_unstable_by_key(|f| f.edge);
+    found
+}
+
+/// What [`nonconformity`] found.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub(crate) struct NonConformity {
+    /// Points lying on a boundary face (or its edge) of another tetrahedron.
+    pub hanging_nodes: usize,
+    /// Pairs of boundary faces sharing an edge and lying on each other.
+    pub folded_pairs: usize,
+    /// The boundary faces taking part, by tetrahedron and local face.
+    pub faces: Vec<BoundaryFace>,
+}
+
+/// The non-conforming contacts of a mesh: hanging nodes and folded faces,
+/// and the boundary faces on both sides of them. A face holding a hanging
+/// node is one side; the other side is made of the boundary faces around
+/// that node lying in the same plane (within f32 resolution).
+pub(crate) fn nonconformity(
+    mesh: &TetMesh,
+    topology: &Topology,
+    canonical: &[u32],
+) -> NonConformity {
+    let hanging = find_hanging_nodes(mesh, topology, canonical);
+    let folded = find_folded_faces(mesh, topology, canonical);
+    let mut faces: Vec<BoundaryFace> = folded.iter().flat_map(|f| f.faces).collect();
+    if !hanging.is_empty() {
+        let faces_at = faces_by_point(topology, mesh.points.len());
+        let point = |i: u32| mesh.points[i as usize].as_dvec3();
+        let ulp = DEGENERATE_HEIGHT_ULPS * f64::from(f32::EPSILON);
+        for h in &hanging {
+            faces.push(h.face);
+            let t = h.face.vertices.map(point);
+            let normal = (t[1] - t[0]).cross(t[2] - t[0]);
+            let len = normal.length();
+            let scale = t.iter().fold(0.0, |m: f64, c| m.max(c.abs().max_element()));
+            let at = &faces_at.1[faces_at.0[h.point as usize]..faces_at.0[h.point as usize + 1]];
+            for &b in at {
+                let other = topology.boundary_faces[b as usize];
+                let in_plane = other.vertices.iter().all(|&v| {
+                    (point(v) - t[0]).dot(normal).abs()
+                        <= ulp * scale.max(point(v).abs().max_element()) * len
+                });
+                if len > 0.0 && in_plane {
+                    faces.push(other);
                 }
             }
         }
-        None
-    })
+    }
+    faces.sort_unstable_by_key(|f| (f.tet, f.local_face));
+    faces.dedup();
+    let mut points: Vec<u32> = hanging.iter().map(|h| h.point).collect();
+    points.dedup();
+    NonConformity {
+        hanging_nodes: points.len(),
+        folded_pairs: folded.len(),
+        faces,
+    }
+}
+
+/// Boundary faces by point, compressed: the faces at point `p` are
+/// `list[start[p]..start[p + 1]]`.
+fn faces_by_point(topology: &Topology, npoints: usize) -> (Vec<usize>, Vec<u32>) {
+    let mut start = vec![0usize; npoints + 1];
+    for face in &topology.boundary_faces {
+        for &v in &face.vertices {
+            start[v as usize + 1] += 1;
+        }
+    }
+    for i in 0..npoints {
+        start[i + 1] += start[i];
+    }
+    let mut fill = start.clone();
+    let mut list = vec![0u32; start[npoints]];
+    for (b, face) in topology.boundary_faces.iter().enumerate() {
+        for &v in &face.vertices {
+            list[fill[v as usize]] = b as u32;
+            fill[v as usize] += 1;
+        }
+    }
+    (start, list)
 }

@@ -157,34 +157,15 @@ pub enum MeshError {
         vertices: [u32; 3],
     },
 
-    /// Tetrahedra that do not meet face to face: a point lies on a face
-    /// (or its edge) of another tetrahedron without being its corner.
+    /// Every tetrahedron was left out of the walk (see `exclude.rs`).
     #[error(
-        "non-conforming mesh: point {point} lies {} the face {face:?} of tetrahedron {tet} \
-         without being one of its corners (a hanging node or T-junction: \
-         tetrahedra must meet face to face)",
-        if *on_edge { "on an edge of" } else { "inside" }
+        "nothing left to render: all {tets} tetrahedra were left out ({flat} flat, the others \
+         in {cells} cells that are tangled, overlap a neighbour or share a face with two others)"
     )]
-    NonConforming {
-        point: u32,
-        face: [u32; 3],
-        tet: u32,
-        on_edge: bool,
-    },
-
-    /// Two boundary faces sharing an edge lie on each other: the two sides
-    /// of a face were split into triangles differently.
-    #[error(
-        "non-conforming mesh: boundary faces {face_a:?} (tetrahedron {tet_a}) and {face_b:?} \
-         (tetrahedron {tet_b}) share the edge {edge:?} and lie on each other (a face split \
-         differently on its two sides: tetrahedra must meet face to face)"
-    )]
-    FoldedFaces {
-        edge: [u32; 2],
-        face_a: [u32; 3],
-        tet_a: u32,
-        face_b: [u32; 3],
-        tet_b: u32,
+    NothingLeft {
+        tets: usize,
+        flat: usize,
+        cells: usize,
     },
 
     /// A mesh read from a file failed validation: the file and the reason.

@@ -19,6 +19,37 @@ use crate::{ScalarField, TetMesh, FACE_VERTICES};
 /// a tetrahedron with two coincident points (volume exactly 0) never does.
 pub const DEGENERATE_HEIGHT_ULPS: f64 = 16.0;
 
+/// The origin a mesh read from a file is stored relative to: the centre of
+/// its bounds `lo..hi` (in f64) when the mesh lies far from the origin,
+/// else zero.
+///
+/// Points are stored as f32, with 24 bits relative to their magnitude: a
+/// mesh of 10 m cells at 7e6 m (a reservoir in UTM coordinates) keeps
+/// 0.5 m of resolution, and its thin cells look flat. Stored relative to
+/// its centre, its coordinates are at most its half extent and keep all 24
+/// bits for the geometry. Meshes whose largest coordinate is at most four
+/// times their half extent (those around the origin, where centring would
+/// gain less than 2 bits) keep their coordinates as given.
+pub fn centring_origin(lo: DVec3, hi: DVec3) -> DVec3 {
+    let centre = (lo + hi) * 0.5;
+    let half = ((hi - lo) * 0.5).max_element();
+    let largest = lo.abs().max(hi.abs()).max_element();
+    if centre.is_finite() && largest > 4.0 * half {
+        centre
+    } else {
+        DVec3::ZERO
+    }
+}
+
+/// Bounds in f64 of points given as `x, y, z` triples; `None` when there
+/// are none.
+pub(crate) fn bounds_f64(points: impl Iterator<Item = DVec3>) -> Option<(DVec3, DVec3)> {
+    points.fold(None, |acc, p| match acc {
+        None => Some((p, p)),
+        Some((lo, hi)) => Some((lo.min(p), hi.max(p))),
+    })
+}
+
 /// Size and flatness of one tetrahedron, computed in f64.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TetShape {

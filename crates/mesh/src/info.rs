@@ -2,10 +2,10 @@
 
 use std::fmt;
 
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 
 use crate::vtk::PieceCounts;
-use crate::{ElementBlock, LoadedMesh};
+use crate::{BoundaryFace, ElementBlock, ExcludedCells, LoadedMesh};
 
 /// Range of one scalar field.
 #[derive(Debug, Clone, PartialEq)]
@@ -33,6 +33,16 @@ pub struct MeshSummary {
     pub tets_from_split: usize,
     /// Pieces joined, points welded, ghost and blanked cells dropped.
     pub pieces: PieceCounts,
+    /// The stored points are relative to this origin (file coordinates =
+    /// origin + point).
+    pub origin: DVec3,
+    /// Cells left out of the walk.
+    pub excluded: ExcludedCells,
+    /// Hanging nodes, pairs of faces split differently, and the unmatched
+    /// faces made boundary.
+    pub hanging_nodes: usize,
+    pub folded_face_pairs: usize,
+    pub nonconforming_faces: Vec<BoundaryFace>,
     pub warnings: Vec<String>,
     /// The stored times (Exodus II), one per time step.
     pub times: Vec<f64>,
@@ -81,6 +91,11 @@ impl MeshSummary {
             cells_split: report.cells_split,
             tets_from_split: report.tets_from_split,
             pieces: report.pieces,
+            origin: report.origin,
+            excluded: report.excluded.clone(),
+            hanging_nodes: report.validation.hanging_nodes,
+            folded_face_pairs: report.validation.folded_face_pairs,
+            nonconforming_faces: report.validation.nonconforming_faces.clone(),
             warnings: report.warnings.clone(),
             times: report.times.clone(),
             time_step: report.time_step,
@@ -158,8 +173,56 @@ impl fmt::Display for MeshSummary {
                 p.hidden_cells_dropped, p.ghost_cells_dropped
             )?;
         }
+        let o = self.origin;
+        if o != DVec3::ZERO {
+            writeln!(
+                f,
+                "origin:          ({}, {}, {}) (bounds are relative to it)",
+                o.x, o.y, o.z
+            )?;
+        }
         writeln!(f, "reoriented:      {}", self.inverted_fixed)?;
         writeln!(f, "flat dropped:    {}", self.degenerate_dropped)?;
+        let x = &self.excluded;
+        if !x.cells.is_empty() {
+            let shown: Vec<String> = x.cells.iter().take(20).map(u32::to_string).collect();
+            writeln!(
+                f,
+                "left out:        {} cells ({} tangled, {} overlapping, {} non-manifold), {} \
+                 tetrahedra, {:.4}% of the volume",
+                x.cells.len(),
+                x.tangled,
+                x.overlapping,
+                x.non_manifold,
+                x.tets,
+                100.0 * x.volume_share
+            )?;
+            let more = if x.cells.len() > 20 { " ..." } else { "" };
+            writeln!(f, "  cells:         {}{more}", shown.join(" "))?;
+        }
+        if x.flat_tets > 0 {
+            writeln!(f, "flat left out:   {} tetrahedra", x.flat_tets)?;
+        }
+        if !self.nonconforming_faces.is_empty() {
+            writeln!(
+                f,
+                "non-conforming:  {} faces made boundary ({} hanging nodes, {} pairs of faces \
+                 split differently)",
+                self.nonconforming_faces.len(),
+                self.hanging_nodes,
+                self.folded_face_pairs
+            )?;
+            for face in self.nonconforming_faces.iter().take(10) {
+                writeln!(
+                    f,
+                    "  tetrahedron {} face {}: points {:?}",
+                    face.tet, face.local_face, face.vertices
+                )?;
+            }
+            if self.nonconforming_faces.len() > 10 {
+                writeln!(f, "  ...")?;
+            }
+        }
         if self.fields.is_empty() {
             writeln!(f, "fields:          none")?;
         } else {

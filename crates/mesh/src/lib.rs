@@ -11,12 +11,17 @@
 //!   outside (its normal by the right-hand rule points out of the tetrahedron).
 //!
 //! Entry points: [`load`] (a file, by name), [`load_plot3d_bytes`] (an
-//! embedded grid), [`prepare`] (a mesh built in memory). Each orients the
-//! tetrahedra, [`validate`]s the mesh (a mesh that cannot be walked face to
-//! face is an error, never rendered wrong) and builds its [`Topology`].
+//! embedded grid), [`prepare`] (a mesh built in memory). Each leaves out
+//! the cells that cannot be walked (tangled, overlapping, flat; reported),
+//! orients the tetrahedra, [`validate`]s the mesh (a broken file is an
+//! error, never rendered wrong; non-conforming faces are warnings: rays
+//! cross them through the boundary) and builds its [`Topology`]. File
+//! readers store the points relative to an origin near the mesh
+//! ([`centring_origin`], [`LoadReport::origin`]).
 
 mod conform;
 mod error;
+mod exclude;
 mod geometry;
 mod info;
 mod load;
@@ -31,10 +36,11 @@ pub mod plot3d;
 pub mod structured;
 
 pub use error::MeshError;
+pub use exclude::ExcludedCells;
 pub use exodus::{
     read_exodus_bytes, read_exodus_file, ElementBlock, ExodusError, ExodusOptions, ExodusRead,
 };
-pub use geometry::{tet_shape, TetShape, DEGENERATE_HEIGHT_ULPS};
+pub use geometry::{centring_origin, tet_shape, TetShape, DEGENERATE_HEIGHT_ULPS};
 pub use info::{FieldRange, MeshSummary};
 pub use load::{
     load, load_plot3d_bytes, plot3d_q_sibling, prepare, LoadOptions, LoadReport, LoadedMesh,

@@ -1,11 +1,17 @@
-//! Loading a mesh from a file, ready to render: read, orient, validate,
-//! build the topology.
+//! Loading a mesh from a file, ready to render: read (points relative to
+//! an origin near the mesh, see [`crate::centring_origin`]), leave out the
+//! cells that cannot be walked (`exclude.rs`), orient, validate, build the
+//! topology. What was changed is in the [`LoadReport`].
 
 use std::path::{Path, PathBuf};
 
+use glam::DVec3;
+
+use crate::exclude::{exclude_bad_cells, ExcludedCells};
 use crate::exodus::{read_exodus_file, ElementBlock, ExodusOptions, ExodusRead};
 use crate::plot3d::{read_plot3d_bytes, read_plot3d_files, Plot3dRead};
-use crate::{validate_with_topology, vtk, MeshError, TetMesh, Topology, ValidationReport};
+use crate::validate::{check_input, check_walkable};
+use crate::{vtk, MeshError, TetMesh, Topology, ValidationReport};
 
 /// Options of [`load`].
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -22,6 +28,9 @@ pub struct LoadOptions {
     /// For a multi-block `.vtm`: keep only the block of this name (or
     /// path `outer/inner`, by the blocks' `name` attributes).
     pub block: Option<String>,
+    /// Quadratic and Lagrange cells: subdivided through all their nodes
+    /// (default) or reduced to their corners.
+    pub linearize: vtk::Linearize,
 }
 
 /// What happened on the way from the file to the mesh.
@@ -48,7 +57,14 @@ pub struct LoadReport {
     /// read and skipped (parallel and multi-block files; ghost and blanked
     /// cells of any VTK file).
     pub pieces: vtk::PieceCounts,
-    /// Validation findings (components, duplicate points, seams...).
+    /// Points the splits added (face and cell centres of higher-order
+    /// cells, polyhedra and prisms), their fields interpolated.
+    pub points_added: usize,
+    /// Higher-order cells, polyhedra and prisms per VTK type: cells, the
+    /// tetrahedra they gave, the points added for them.
+    pub subdivided: Vec<vtk::SubdividedCells>,
+    /// Validation findings (components, duplicate points, seams,
+    /// non-conforming faces...).
     pub validation: ValidationReport,
     /// The times the file stores, one per time step (Exodus II; empty for
     /// the other formats).
@@ -57,6 +73,56 @@ pub struct LoadReport {
     pub time_step: Option<usize>,
     /// The file's element blocks, kept or skipped (Exodus II).
     pub blocks: Vec<ElementBlock>,
+    /// The points are stored relative to this origin: a point's coordinates
+    /// in the file are `origin + point` (zero unless the mesh lies far from
+    /// zero; see [`crate::centring_origin`]). Cameras given in the file's
+    /// coordinates subtract it.
+    pub origin: DVec3,
+    /// Cells left out of the walk (tangled, overlapping) and flat
+    /// tetrahedra dropped.
+    pub excluded: ExcludedCells,
+}
+
+impl LoadReport {
+    /// One line saying what loading changed in the mesh (non-conforming
+    /// faces made boundary, cells left out with their volume share, the
+    /// origin shift), or `None` when it changed nothing of the geometry.
+    pub fn changes(&self) -> Option<String> {
+        let mut parts = Vec::new();
+        let v = &self.validation;
+        if !v.nonconforming_faces.is_empty() {
+            parts.push(format!(
+                "{} non-conforming faces made boundary ({} hanging nodes, {} pairs of faces split \
+                 differently)",
+                v.nonconforming_faces.len(),
+                v.hanging_nodes,
+                v.folded_face_pairs
+            ));
+        }
+        let x = &self.excluded;
+        if !x.cells.is_empty() {
+            parts.push(format!(
+                "{} cells left out ({} tangled, {} overlapping, {} non-manifold; {:.4}% of the \
+                 volume)",
+                x.cells.len(),
+                x.tangled,
+                x.overlapping,
+                x.non_manifold,
+                100.0 * x.volume_share
+            ));
+        }
+        if x.flat_tets > 0 {
+            parts.push(format!("{} flat tetrahedra dropped", x.flat_tets));
+        }
+        if self.origin != DVec3::ZERO {
+            let o = self.origin;
+            parts.push(format!(
+                "points stored relative to the origin ({}, {}, {})",
+                o.x, o.y, o.z
+            ));
+        }
+        (!parts.is_empty()).then(|| format!("mesh changed on load: {}", parts.join("; ")))
+    }
 }
 
 /// A mesh ready to render: positively oriented, validated, with its
@@ -66,6 +132,14 @@ pub struct LoadedMesh {
     pub mesh: TetMesh,
     pub topology: Topology,
     pub report: LoadReport,
+}
+
+impl LoadedMesh {
+    /// Where the stored points are relative to the file's coordinates
+    /// (see [`LoadReport::origin`]).
+    pub fn origin(&self) -> DVec3 {
+        self.report.origin
+    }
 }
 
 /// The file formats [`load`] recognises by name.
@@ -129,9 +203,12 @@ pub fn plot3d_q_sibling(xyz: &Path) -> Option<PathBuf> {
 pub fn load(path: &Path, opts: &LoadOptions) -> Result<LoadedMesh, MeshError> {
     let file = path.display().to_string();
     let format = format_of(path).ok_or_else(|| MeshError::UnknownFormat { file: file.clone() })?;
+    let vtk_opts = vtk::ReadOptions {
+        linearize: opts.linearize,
+    };
     let read = match format {
         Format::Legacy => {
-            let read = vtk::read_legacy_file(path)?;
+            let read = vtk::read_legacy_file_with(path, &vtk_opts)?;
             let format = match read.dataset {
                 "StructuredGrid" => "VTK legacy STRUCTURED_GRID",
                 "RectilinearGrid" => "VTK legacy RECTILINEAR_GRID",
@@ -141,7 +218,7 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<LoadedMesh, MeshError> {
             from_vtk(read, format)
         }
         Format::Xml => {
-            let read = vtk::read_vtu_file(path)?;
+            let read = vtk::read_vtu_file_with(path, &vtk_opts)?;
             let format = match read.dataset {
                 "StructuredGrid" => "VTK XML StructuredGrid",
                 "RectilinearGrid" => "VTK XML RectilinearGrid",
@@ -150,15 +227,19 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<LoadedMesh, MeshError> {
             };
             from_vtk(read, format)
         }
-        Format::Parallel => from_vtk(vtk::read_parallel_file(path)?, "VTK parallel XML"),
+        Format::Parallel => from_vtk(
+            vtk::read_parallel_file_with(path, &vtk_opts)?,
+            "VTK parallel XML",
+        ),
         Format::MultiBlock => from_vtk(
-            vtk::read_multiblock_file(path, opts.block.as_deref())?,
+            vtk::read_multiblock_file_with(path, opts.block.as_deref(), &vtk_opts)?,
             "VTK multi-block",
         ),
         Format::Exodus => {
             let exodus = ExodusOptions {
                 time_step: opts.time_step,
                 time: opts.time,
+                linearize: opts.linearize,
             };
             from_exodus(read_exodus_file(path, &exodus)?)
         }
@@ -227,6 +308,11 @@ struct Read {
     time_step: Option<usize>,
     blocks: Vec<ElementBlock>,
     pieces: vtk::PieceCounts,
+    points_added: usize,
+    subdivided: Vec<vtk::SubdividedCells>,
+    origin: DVec3,
+    /// Per tetrahedron, the cell it came from (empty: each its own).
+    tet_cells: Vec<u32>,
 }
 
 fn from_vtk(read: vtk::VtkRead, format: &'static str) -> Read {
@@ -235,11 +321,25 @@ fn from_vtk(read: vtk::VtkRead, format: &'static str) -> Read {
         mesh: read.mesh,
         format,
         warnings: read.warnings,
-        cells_split: c.hexahedra + c.wedges + c.pyramids + c.voxels,
+        cells_split: cells_split(&c),
         tets_from_split: c.tets_from_split,
+        points_added: c.points_added,
+        subdivided: c.subdivided,
         pieces: read.pieces,
+        origin: read.origin,
+        tet_cells: read.tet_cells,
         ..Read::default()
     }
+}
+
+/// The cells split or subdivided into tetrahedra: every volume cell but
+/// the linear tetrahedra.
+fn cells_split(c: &vtk::CellCounts) -> usize {
+    c.hexahedra
+        + c.wedges
+        + c.pyramids
+        + c.voxels
+        + c.subdivided.iter().map(|s| s.cells).sum::<usize>()
 }
 
 fn from_exodus(read: ExodusRead) -> Read {
@@ -248,20 +348,36 @@ fn from_exodus(read: ExodusRead) -> Read {
         mesh: read.mesh,
         format: "Exodus II",
         warnings: read.warnings,
-        cells_split: c.hexahedra + c.wedges + c.pyramids + c.voxels,
+        cells_split: cells_split(&c),
         tets_from_split: c.tets_from_split,
+        points_added: c.points_added,
+        subdivided: c.subdivided,
         times: read.times,
         time_step: read.time_step,
         blocks: read.blocks,
+        origin: read.origin,
+        tet_cells: read.tet_cells,
         ..Read::default()
     }
 }
 
+/// PLOT3D grids are read in f32 (most are single precision); they are
+/// centred like the others, the subtraction done in f64.
 fn from_plot3d(read: Plot3dRead) -> Read {
     let hexahedra = read.hexahedra - read.blanked_hexahedra;
+    let mut mesh = read.mesh;
+    let origin = crate::geometry::bounds_f64(mesh.points.iter().map(|p| p.as_dvec3()))
+        .map_or(DVec3::ZERO, |(lo, hi)| crate::centring_origin(lo, hi));
+    if origin != DVec3::ZERO {
+        for p in &mut mesh.points {
+            *p = (p.as_dvec3() - origin).as_vec3();
+        }
+    }
     Read {
-        tets_from_split: read.mesh.tets.len(),
-        mesh: read.mesh,
+        tets_from_split: mesh.tets.len(),
+        mesh,
+        origin,
+        tet_cells: Vec::new(),
         format: "PLOT3D",
         warnings: read.warnings,
         degenerate_dropped: read.degenerate_dropped,
@@ -272,9 +388,12 @@ fn from_plot3d(read: Plot3dRead) -> Read {
 }
 
 fn finish(mut read: Read) -> Result<LoadedMesh, MeshError> {
-    read.inverted_fixed += read.mesh.orient();
-    let (validation, topology) = validate_with_topology(&read.mesh)?;
+    check_input(&read.mesh)?;
+    let (topology, excluded, reoriented) = exclude_bad_cells(&mut read.mesh, &read.tet_cells)?;
+    read.inverted_fixed += reoriented;
+    let validation = check_walkable(&read.mesh, &topology)?;
     let mut warnings = read.warnings;
+    warnings.extend(excluded.warnings());
     warnings.extend(validation.warnings.iter().cloned());
     Ok(LoadedMesh {
         mesh: read.mesh,
@@ -287,10 +406,14 @@ fn finish(mut read: Read) -> Result<LoadedMesh, MeshError> {
             cells_split: read.cells_split,
             tets_from_split: read.tets_from_split,
             pieces: read.pieces,
+            points_added: read.points_added,
+            subdivided: read.subdivided,
             validation,
             times: read.times,
             time_step: read.time_step,
             blocks: read.blocks,
+            origin: read.origin,
+            excluded,
         },
     })
 }

@@ -5,16 +5,20 @@
 //! mesh, field lengths, dangling or repeated point indices, non-finite
 //! coordinates or scalars, negatively oriented or degenerate tetrahedra,
 //! faces shared by more than two tetrahedra, tetrahedra overlapping across
-//! a shared face, and tetrahedra not meeting face to face (a hanging node
-//! or T-junction, a face split differently on its two sides; see
-//! `conform.rs`). Warnings for what renders fine: duplicate points, unused
-//! points, coincident boundary faces (seams), several components.
+//! a shared face. The loader leaves the last three out of the walk first
+//! (`exclude.rs`), so only a mesh built by hand meets them here.
+//!
+//! Warnings for what renders fine: duplicate points, unused points,
+//! coincident boundary faces (seams), several components, and tetrahedra
+//! not meeting face to face (hanging nodes or T-junctions, a face split
+//! differently on its two sides; see `conform.rs`): the unmatched faces are
+//! boundary faces, crossed through the boundary BVH like a seam.
 
 use rayon::prelude::*;
 
-use crate::conform::{find_folded_faces, find_hanging_node};
+use crate::conform::nonconformity;
 use crate::seams::{coincident_boundary_faces, duplicate_points};
-use crate::{tet_shape, MeshError, TetMesh, Topology, FACE_VERTICES};
+use crate::{tet_shape, BoundaryFace, MeshError, TetMesh, Topology, FACE_VERTICES};
 
 /// What validation found that does not stop rendering.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -28,6 +32,15 @@ pub struct ValidationReport {
     /// Boundary faces lying exactly on another boundary face (a seam where
     /// two parts of the mesh touch without sharing points).
     pub seam_faces: usize,
+    /// Points lying on a face or edge of another tetrahedron without being
+    /// its corner (hanging nodes, T-junctions).
+    pub hanging_nodes: usize,
+    /// Pairs of boundary faces sharing an edge and lying on each other (a
+    /// quadrilateral split along different diagonals on its two sides).
+    pub folded_face_pairs: usize,
+    /// The unmatched faces of those non-conforming contacts, both sides: a
+    /// ray leaves through them and re-enters through the other side.
+    pub nonconforming_faces: Vec<BoundaryFace>,
     /// The above (when not zero or one) as sentences.
     pub warnings: Vec<String>,
 }
@@ -43,33 +56,36 @@ pub fn validate(mesh: &TetMesh) -> Result<ValidationReport, MeshError> {
 
 /// [`validate`], also returning the topology it built on the way.
 pub fn validate_with_topology(mesh: &TetMesh) -> Result<(ValidationReport, Topology), MeshError> {
+    check_input(mesh)?;
+    let topology = Topology::build(mesh)?;
+    let report = check_walkable(mesh, &topology)?;
+    Ok((report, topology))
+}
+
+/// What must hold before any geometry is looked at: counts, indices in
+/// range and not repeated, finite coordinates and scalars.
+pub(crate) fn check_input(mesh: &TetMesh) -> Result<(), MeshError> {
     check_sizes(mesh)?;
     check_indices(mesh)?;
-    check_finite(mesh)?;
+    check_finite(mesh)
+}
+
+/// The checks on shapes and the topology (`check_input` passed), and the
+/// findings.
+pub(crate) fn check_walkable(
+    mesh: &TetMesh,
+    topology: &Topology,
+) -> Result<ValidationReport, MeshError> {
     check_shapes(mesh)?;
-    let topology = Topology::build(mesh)?;
-    check_face_sides(mesh, &topology)?;
+    if let Some(&(tet_a, tet_b, vertices)) = face_side_conflicts(mesh, topology).first() {
+        return Err(MeshError::Overlapping {
+            tet_a,
+            tet_b,
+            vertices,
+        });
+    }
     let canonical = duplicate_points(&mesh.points);
-    if let Some(h) = find_hanging_node(mesh, &topology, &canonical) {
-        return Err(MeshError::NonConforming {
-            point: h.point,
-            face: h.face.vertices,
-            tet: h.face.tet,
-            on_edge: h.on_edge,
-        });
-    }
-    if let Some(f) = find_folded_faces(mesh, &topology, &canonical) {
-        let [a, b] = f.faces;
-        return Err(MeshError::FoldedFaces {
-            edge: f.edge,
-            face_a: a.vertices,
-            tet_a: a.tet,
-            face_b: b.vertices,
-            tet_b: b.tet,
-        });
-    }
-    let report = findings(mesh, &topology, &canonical);
-    Ok((report, topology))
+    Ok(findings(mesh, topology, &canonical))
 }
 
 fn check_sizes(mesh: &TetMesh) -> Result<(), MeshError> {
@@ -187,13 +203,17 @@ fn odd_sort_parity(v: [u32; 3]) -> bool {
 /// face see it with opposite vertex orders (each counter-clockwise from its
 /// own outside). The same order means both lie on one side: they overlap,
 /// and a ray leaving one through that face would walk into the other.
-fn check_face_sides(mesh: &TetMesh, topology: &Topology) -> Result<(), MeshError> {
-    let bad = topology
+/// Every such pair `(t, neighbour, face of t)` with `t < neighbour`.
+pub(crate) fn face_side_conflicts(
+    mesh: &TetMesh,
+    topology: &Topology,
+) -> Vec<(u32, u32, [u32; 3])> {
+    topology
         .neighbors
         .par_iter()
         .enumerate()
-        .find_map_first(|(t, nbs)| {
-            nbs.iter().enumerate().find_map(|(f, &nb)| {
+        .flat_map_iter(|(t, nbs)| {
+            nbs.iter().enumerate().filter_map(move |(f, &nb)| {
                 if nb == crate::NO_NEIGHBOR || (nb as usize) < t {
                     return None;
                 }
@@ -202,15 +222,8 @@ fn check_face_sides(mesh: &TetMesh, topology: &Topology) -> Result<(), MeshError
                 let theirs = FACE_VERTICES[g].map(|v| mesh.tets[nb as usize][v]);
                 (odd_sort_parity(mine) == odd_sort_parity(theirs)).then_some((t as u32, nb, mine))
             })
-        });
-    match bad {
-        Some((tet_a, tet_b, vertices)) => Err(MeshError::Overlapping {
-            tet_a,
-            tet_b,
-            vertices,
-        }),
-        None => Ok(()),
-    }
+        })
+        .collect()
 }
 
 fn findings(mesh: &TetMesh, topology: &Topology, canonical: &[u32]) -> ValidationReport {
@@ -228,6 +241,7 @@ fn findings(mesh: &TetMesh, topology: &Topology, canonical: &[u32]) -> Validatio
         .filter(|&(i, &c)| c as usize != i)
         .count();
     let seam_faces = coincident_boundary_faces(topology, canonical);
+    let nonconforming = nonconformity(mesh, topology, canonical);
 
     let mut warnings = Vec::new();
     if duplicate_points > 0 {
@@ -240,6 +254,16 @@ fn findings(mesh: &TetMesh, topology: &Topology, canonical: &[u32]) -> Validatio
         warnings.push(format!(
             "{seam_faces} boundary faces lie exactly on another boundary face (seams); \
              rays cross them by leaving and re-entering the mesh"
+        ));
+    }
+    if !nonconforming.faces.is_empty() {
+        warnings.push(format!(
+            "{} faces do not meet face to face ({} hanging nodes, {} pairs of faces split \
+             differently on their two sides); they are boundary faces, crossed by leaving \
+             and re-entering the mesh",
+            nonconforming.faces.len(),
+            nonconforming.hanging_nodes,
+            nonconforming.folded_pairs
         ));
     }
     if unused_points > 0 {
@@ -255,6 +279,9 @@ fn findings(mesh: &TetMesh, topology: &Topology, canonical: &[u32]) -> Validatio
         duplicate_points,
         unused_points,
         seam_faces,
+        hanging_nodes: nonconforming.hanging_nodes,
+        folded_face_pairs: nonconforming.folded_pairs,
+        nonconforming_faces: nonconforming.faces,
         warnings,
     }
 }

@@ -197,7 +197,11 @@ fn model() -> Model {
 }
 
 fn step(time_step: Option<usize>, time: Option<f64>) -> ExodusOptions {
-    ExodusOptions { time_step, time }
+    ExodusOptions {
+        time_step,
+        time,
+        ..ExodusOptions::default()
+    }
 }
 
 /// Checks a read of [`model`] at time step 1 against the values it was

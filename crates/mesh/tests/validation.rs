@@ -1,5 +1,9 @@
-//! Validation of meshes built in memory: every defect is rejected with the
-//! variant that names it; what renders fine passes with a warning.
+//! Validation of meshes built in memory: every defect is rejected by
+//! `validate` with the variant that names it; what renders fine passes with
+//! a warning. `prepare` (the loader) leaves out the cells that cannot be
+//! walked (flat, overlapping, on a non-manifold face) and reports them;
+//! non-conforming faces are warnings, since rays cross them through the
+//! boundary BVH.
 
 use glam::Vec3;
 use tetray_mesh::structured::structured_tets;
@@ -127,14 +131,19 @@ fn non_finite_coordinates_and_scalars() {
 }
 
 #[test]
-fn degenerate_tet_is_rejected() {
+fn degenerate_tet_is_rejected_by_validate_and_dropped_on_load() {
     let mut mesh = cube();
     // A fifth point on the face z = 0 and a tet flat in that plane.
     mesh.points.push(Vec3::new(0.5, 0.5, 0.0));
     mesh.fields[0].values.push(0.0);
     mesh.tets.push([0, 1, 2, 8]);
-    let e = err(mesh);
+    let e = validate(&mesh).unwrap_err();
     assert!(matches!(e, MeshError::DegenerateTet { tet: 5, .. }), "{e}");
+    let loaded = prepare(mesh).unwrap();
+    assert_eq!(loaded.report.excluded.flat_tets, 1);
+    assert!(loaded.report.excluded.cells.is_empty());
+    assert_eq!(loaded.mesh.tets.len(), 5);
+    assert!(loaded.report.warnings.iter().any(|w| w.contains("1 flat")));
 }
 
 #[test]
@@ -159,11 +168,23 @@ fn face_shared_by_three_tets() {
     mesh.points.push(Vec3::new(2.0, 2.0, 2.0));
     mesh.fields[0].values.push(0.0);
     mesh.tets.push([face[0], face[1], face[2], 8]);
-    let e = err(mesh);
+    mesh.orient();
+    let e = validate(&mesh).unwrap_err();
     assert!(
         matches!(&e, MeshError::NonManifoldFace { tets, .. } if tets.len() == 3),
         "{e}"
     );
+    // The loader leaves the three out; the other three tets remain.
+    let loaded = prepare(mesh).unwrap();
+    let x = &loaded.report.excluded;
+    assert_eq!(x.non_manifold, 3);
+    assert_eq!(x.cells.len(), 3);
+    assert!(
+        x.cells.contains(&0) && x.cells.contains(&5),
+        "{:?}",
+        x.cells
+    );
+    assert_eq!(loaded.mesh.tets.len(), 3);
 }
 
 #[test]
@@ -180,19 +201,37 @@ fn overlapping_tets_across_a_face() {
         tets: vec![[0, 1, 2, 3], [0, 1, 2, 4]],
         fields: vec![],
     };
-    let e = err(mesh);
+    let e = validate(&mesh).unwrap_err();
     assert!(
         matches!(e, MeshError::Overlapping { tet_a: 0, tet_b: 1, vertices } if {
             let mut v = vertices; v.sort_unstable(); v == [0, 1, 2]
         }),
         "{e}"
     );
+    // The loader leaves both out (the face cannot tell which is wrong):
+    // nothing is left, which is an error saying so.
+    let e = err(mesh);
+    assert!(
+        matches!(
+            e,
+            MeshError::NothingLeft {
+                tets: 2,
+                flat: 0,
+                cells: 2
+            }
+        ),
+        "{e}"
+    );
 }
 
 /// A tet above the triangle (p0, p1, p2); below it, the same triangle
 /// split at the midpoint m of p0-p1 into two tets: m hangs on an edge.
+/// Once rejected; now a warning: the unmatched faces on both sides are
+/// boundary faces, and a ray crossing from one side to the other leaves and
+/// re-enters the mesh through the boundary BVH, exactly as at a seam (the
+/// ray caster's `nonconforming.rs` checks the image).
 #[test]
-fn t_junction_is_rejected() {
+fn t_junction_is_a_warning() {
     let points = vec![
         Vec3::ZERO,
         Vec3::new(2.0, 0.0, 0.0),
@@ -206,25 +245,30 @@ fn t_junction_is_rejected() {
         tets: vec![[0, 1, 2, 4], [0, 3, 2, 5], [3, 1, 2, 5]],
         fields: vec![],
     };
-    let e = err(mesh);
-    assert!(
-        matches!(
-            e,
-            MeshError::NonConforming {
-                point: 3,
-                on_edge: true,
-                tet: 0,
-                ..
-            }
-        ),
-        "{e}"
-    );
+    let loaded = prepare(mesh).unwrap();
+    let v = &loaded.report.validation;
+    assert_eq!(v.hanging_nodes, 1);
+    // The two faces of tet 0 on the hanging node's edge (z = 0 and the
+    // outer face y = 0, against which the lower tets' outer faces make a
+    // T-junction too), and the two faces below z = 0.
+    let tets: Vec<u32> = v.nonconforming_faces.iter().map(|f| f.tet).collect();
+    assert_eq!(tets, [0, 0, 1, 2]);
+    assert!(loaded
+        .report
+        .warnings
+        .iter()
+        .any(|w| w.contains("4 faces do not meet")));
+    assert!(loaded
+        .report
+        .changes()
+        .unwrap()
+        .contains("4 non-conforming faces"));
 }
 
 /// The triangle below split at its centroid: the centroid hangs inside the
-/// face of the tet above.
+/// face of the tet above (a warning, as the T-junction).
 #[test]
-fn hanging_node_inside_a_face_is_rejected() {
+fn hanging_node_inside_a_face_is_a_warning() {
     let points = vec![
         Vec3::ZERO,
         Vec3::new(3.0, 0.0, 0.0),
@@ -234,33 +278,36 @@ fn hanging_node_inside_a_face_is_rejected() {
         Vec3::new(1.0, 1.0, -1.0),
     ];
     let tets = vec![[0, 1, 2, 4], [0, 1, 3, 5], [1, 2, 3, 5], [2, 0, 3, 5]];
-    let e = err(TetMesh {
+    let loaded = prepare(TetMesh {
         points,
         tets,
         fields: vec![],
-    });
-    assert!(
-        matches!(
-            e,
-            MeshError::NonConforming {
-                point: 3,
-                on_edge: false,
-                tet: 0,
-                ..
-            }
-        ),
-        "{e}"
-    );
+    })
+    .unwrap();
+    let v = &loaded.report.validation;
+    assert_eq!(v.hanging_nodes, 1);
+    // Each lower face shares an edge with the upper one and lies on it.
+    assert_eq!(v.folded_face_pairs, 3);
+    assert_eq!(v.nonconforming_faces.len(), 4);
 }
 
+/// Once rejected, now a warning (as the T-junction above).
 #[test]
-fn mismatched_diagonals_are_rejected() {
+fn mismatched_diagonals_are_a_warning() {
     // Conforming: alternate the split.
-    assert!(prepare(row(&[0, 0])).is_ok());
+    let conforming = prepare(row(&[0, 0])).unwrap();
+    assert!(conforming.report.validation.nonconforming_faces.is_empty());
+    assert!(conforming.report.changes().is_none());
     // Both hexes with the same local pattern: the shared face x = 1 is cut
     // along different diagonals from its two sides.
-    let e = err(row(&[0, 1]));
-    assert!(matches!(e, MeshError::FoldedFaces { .. }), "{e}");
+    let loaded = prepare(row(&[0, 1])).unwrap();
+    let v = &loaded.report.validation;
+    // Two triangles on each side, each folded onto both of the other side.
+    assert_eq!(v.folded_face_pairs, 4);
+    assert_eq!(v.nonconforming_faces.len(), 4);
+    assert_eq!(v.hanging_nodes, 0);
+    // The four faces are the topology's boundary faces beyond the box's 20.
+    assert_eq!(loaded.topology.boundary_faces.len(), 24);
 }
 
 /// Two cubes side by side that do not share points: a seam. Rendering

@@ -62,6 +62,7 @@ fn mixed_cells_split_into_the_expected_conforming_tetrahedra() {
         skipped_lower_dim: 2,
         // The hexahedron and voxel meet the 6-tet case, wedge 3, pyramid 2.
         tets_from_split: 6 + 3 + 2 + 6,
+        ..CellCounts::default()
     };
     assert_eq!(read.cells, expected);
     let mesh = &read.mesh;

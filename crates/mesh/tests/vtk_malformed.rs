@@ -229,22 +229,22 @@ fn legacy_index_value_and_cell_errors() {
         "{e}"
     );
     let e = legacy_err(&format!(
-        "{FIVE_POINTS}CELLS 2 16\n4 0 1 2 3\n10 0 1 2 3 4 0 1 2 3 4\nCELL_TYPES 2\n10 24\n"
+        "{FIVE_POINTS}CELLS 2 16\n4 0 1 2 3\n10 0 1 2 3 4 0 1 2 3 4\nCELL_TYPES 2\n10 78\n"
     ));
     assert!(
         matches!(
             e,
             VtkError::UnsupportedCell {
                 cell: 1,
-                type_id: 24,
-                type_name: "quadratic tetra",
+                type_id: 78,
+                type_name: "Bezier tetrahedron",
                 ..
             }
         ),
         "{e}"
     );
     assert!(
-        e.to_string().contains("cell 1") && e.to_string().contains("24"),
+        e.to_string().contains("cell 1") && e.to_string().contains("78"),
         "{e}"
     );
     let e = legacy_err(&format!(
@@ -402,7 +402,7 @@ fn vtu_count_index_and_value_errors() {
     ));
     assert!(matches!(e, VtkError::NonFinite { index: 1, .. }), "{e}");
     let e = vtu_err(&vtu(
-        &format!("{POINTS4}{}", cells("0 1 2 3 0 1 2 3 0 1", "10", "24")),
+        &format!("{POINTS4}{}", cells("0 1 2 3 0 1 2 3 0 1", "10", "78")),
         "",
     ));
     assert!(
@@ -410,7 +410,7 @@ fn vtu_count_index_and_value_errors() {
             e,
             VtkError::UnsupportedCell {
                 cell: 0,
-                type_id: 24,
+                type_id: 78,
                 ..
             }
         ),

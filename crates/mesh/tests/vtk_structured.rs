@@ -16,10 +16,16 @@ fn dims(e: [i64; 6]) -> [usize; 3] {
     [0, 1, 2].map(|a| (e[2 * a + 1] - e[2 * a] + 1) as usize)
 }
 
-/// Asserts the mesh's points are `want` (f64) rounded to f32, in order.
+/// Asserts the mesh's points are `want` (f64), in order: relative to the
+/// origin the reader stored them from, rounded to f32 (as it does).
 fn assert_points(read: &VtkRead, want: &[f64], what: &str) {
     let got: Vec<f32> = read.mesh.points.iter().flat_map(|p| p.to_array()).collect();
-    let want: Vec<f32> = want.iter().map(|&v| v as f32).collect();
+    let o = read.origin.to_array();
+    let want: Vec<f32> = want
+        .iter()
+        .enumerate()
+        .map(|(i, &v)| (v - o[i % 3]) as f32)
+        .collect();
     assert_eq!(got, want, "{what}: points");
 }
 
@@ -218,7 +224,8 @@ fn vti_places_points_by_origin_spacing_and_direction() {
         Enc::Ascii,
     );
     let read = read_vtu_bytes(&bytes, "cube.vti").unwrap();
-    assert_eq!(read.mesh.points[7].to_array(), [2.0, 3.0, 4.0]);
+    let p7 = read.mesh.points[7].as_dvec3() + read.origin;
+    assert_eq!(p7.to_array(), [2.0, 3.0, 4.0]);
 }
 
 #[test]

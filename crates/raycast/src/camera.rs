@@ -71,6 +71,14 @@ impl Default for Camera {
     }
 }
 
+/// A point given in a file's coordinates (f64; a camera position or focal
+/// point) in the coordinates of a mesh stored relative to `origin`
+/// (`tetray_mesh::LoadReport::origin`): subtracted in f64, then rounded to
+/// f32, so a camera at 7e6 m keeps the resolution of the mesh near it.
+pub fn relative_to_origin(world: DVec3, origin: DVec3) -> Vec3 {
+    (world - origin).as_vec3()
+}
+
 /// The orthonormal view basis of a validated camera.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ViewBasis {

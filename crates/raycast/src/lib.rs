@@ -15,7 +15,7 @@ mod scene;
 pub mod scenes;
 mod walk;
 
-pub use camera::{Camera, CameraError, PixelRays, ViewBasis};
+pub use camera::{relative_to_origin, Camera, CameraError, PixelRays, ViewBasis};
 pub use cpu::{
     render_cpu, render_cpu_with_progress, render_scalar, render_scalar_with_progress, trace_pixel,
     RayTrace, RenderError, RenderOptions, RenderOutput, RenderStats,

@@ -17,7 +17,10 @@
 //!   (averaged to points over the blocks that define them); x/y/z
 //!   component triples (`VX VY VZ`, `V_X V_Y V_Z`, `vel_x vel_y vel_z`)
 //!   are also one 3-component array (`V`, `vel`), kept beside the
-//!   components.
+//!   components;
+//! - quadratic blocks become VTK's quadratic cells (24-27, 29), subdivided
+//!   through their mid-edge, face and body nodes like those of a VTK file
+//!   (or reduced to their corners with [`Linearize::Corners`]).
 
 mod elements;
 mod error;
@@ -29,7 +32,7 @@ use std::path::Path;
 
 pub use error::ExodusError;
 
-use crate::vtk::{assemble, CellCounts};
+use crate::vtk::{assemble_with, CellCounts, Linearize, ReadOptions};
 use crate::TetMesh;
 
 /// Which time step to read. At most one of the two may be given.
@@ -39,6 +42,9 @@ pub struct ExodusOptions {
     pub time_step: Option<usize>,
     /// Read the step whose stored time is nearest this one.
     pub time: Option<f64>,
+    /// Quadratic blocks (TETRA10, HEX20, HEX27, WEDGE15, PYRAMID13):
+    /// subdivided through all their nodes (default) or their corners only.
+    pub linearize: Linearize,
 }
 
 /// An element block as the file describes it.
@@ -71,6 +77,13 @@ pub struct ExodusRead {
     pub blocks: Vec<ElementBlock>,
     /// The netCDF container ("Cdf1", "Nc4"...).
     pub container: String,
+    /// The points are stored relative to this origin (f64; see
+    /// [`crate::centring_origin`]): a node's coordinates in the file are
+    /// `origin + point`.
+    pub origin: glam::DVec3,
+    /// Per tetrahedron, the 0-based number of the element it was split
+    /// from, counted across all element blocks (skipped blocks included).
+    pub tet_cells: Vec<u32>,
 }
 
 /// Reads an Exodus II file.
@@ -100,7 +113,10 @@ pub fn read_exodus_bytes(
 
 fn read(bytes: Vec<u8>, name: &str, opts: &ExodusOptions) -> Result<ExodusRead, ExodusError> {
     let (grid, meta) = read::read_raw(bytes, name, opts)?;
-    let read = assemble(grid, name)?;
+    let vtk = ReadOptions {
+        linearize: opts.linearize,
+    };
+    let read = assemble_with(grid, name, &vtk)?;
     Ok(ExodusRead {
         mesh: read.mesh,
         warnings: read.warnings,
@@ -109,5 +125,7 @@ fn read(bytes: Vec<u8>, name: &str, opts: &ExodusOptions) -> Result<ExodusRead, 
         time_step: meta.time_step,
         blocks: meta.blocks,
         container: meta.container,
+        origin: read.origin,
+        tet_cells: read.tet_cells,
     })
 }

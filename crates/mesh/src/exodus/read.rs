@@ -148,6 +148,9 @@ fn element_blocks(
     let mut blocks = Vec::with_capacity(count);
     let mut kept = Vec::new();
     grid.offsets.push(0);
+    // Elements are numbered across all blocks, skipped ones included (0-based
+    // Exodus element numbers), so cells left out are reported by them.
+    let mut elements_before = 0;
     for b in 0..count {
         let number = b + 1;
         let cells = if status[b] == 0 {
@@ -167,6 +170,8 @@ fn element_blocks(
             kept: false,
         };
         let fam = family(&elem_type);
+        let first_element = elements_before;
+        elements_before += cells;
         if cells == 0 || fam == Family::LowerDim {
             blocks.push(block);
             continue;
@@ -194,6 +199,8 @@ fn element_blocks(
                 num_nodes,
             }
         })?;
+        grid.cell_numbers
+            .extend((first_element..first_element + cells).map(|e| e as u32));
         block.kept = true;
         blocks.push(block);
         kept.push(KeptBlock {
@@ -202,6 +209,7 @@ fn element_blocks(
             cells,
         });
     }
+    grid.cells_numbered = elements_before;
     Ok((blocks, kept))
 }
 

@@ -1,13 +1,19 @@
 //! From the arrays of a parsed file (either format) to a [`TetMesh`]:
-//! index and finiteness checks, cell splitting, point fields.
+//! index and finiteness checks, cell splitting, point fields. Points the
+//! splits add come after the file's, with every point array interpolated
+//! to them with the weights that place them.
 
 use std::collections::BTreeMap;
 
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 
+use super::added_points::AddedPoints;
 use super::cells::{classify, type_name, CellKind};
-use super::split::split_cell;
-use super::{CellCounts, PieceCounts, VtkError, VtkRead};
+use super::poly_grid::{checked_faces, separate_inline_faces};
+use super::polyhedron::{prism_faces, split_polyhedron, PolyhedronFaces};
+use super::split::{hexahedron_cones, split_cell};
+use super::split_quadratic::{subdivide, Subdivision};
+use super::{CellCounts, PieceCounts, ReadOptions, SubdividedCells, VtkError, VtkRead};
 use crate::{ScalarField, TetMesh};
 
 /// A named point or cell array as read, `components` values per tuple.
@@ -38,6 +44,10 @@ pub(crate) struct RawGrid {
     pub types: Vec<i64>,
     pub point_arrays: Vec<RawArray>,
     pub cell_arrays: Vec<RawArray>,
+    /// Faces of the polyhedra (type 42) whose file lists them apart from
+    /// the connectivity (XML); a polyhedron missing here carries its face
+    /// stream in the connectivity (legacy).
+    pub polyhedron_faces: PolyhedronFaces,
     pub warnings: Vec<String>,
     /// The VTK dataset type read ("UnstructuredGrid", "StructuredGrid"...).
     pub dataset: &'static str,
@@ -46,10 +56,42 @@ pub(crate) struct RawGrid {
     pub global_ids: Option<String>,
     /// Pieces, welding and ghost cells, for the load report.
     pub pieces: PieceCounts,
+    /// The number of each cell in the file(s) read, for reports of cells
+    /// left out (empty: each cell's index). It differs from the index once
+    /// cells are dropped or grids joined: a file's cells are numbered as it
+    /// lists them, ghost and hidden cells included; the cells of joined
+    /// pieces and blocks are numbered on from those of the pieces before
+    /// them, in the order the parallel or multi-block file names them (see
+    /// `pieces.rs`); Exodus elements by their 0-based number across all
+    /// element blocks, skipped blocks included.
+    pub cell_numbers: Vec<u32>,
+    /// How many cells the numbering spans (the cells read, dropped ones
+    /// included); only meaningful when `cell_numbers` is not empty.
+    pub cells_numbered: usize,
+}
+
+impl RawGrid {
+    /// The number of cell `c` in the file(s) read (see `cell_numbers`).
+    pub(crate) fn cell_number(&self, c: usize) -> u32 {
+        self.cell_numbers.get(c).copied().unwrap_or(c as u32)
+    }
+
+    /// How many cell numbers the grid spans, dropped cells included.
+    pub(crate) fn numbered_cells(&self) -> usize {
+        if self.cell_numbers.is_empty() {
+            self.types.len()
+        } else {
+            self.cells_numbered
+        }
+    }
 }
 
 /// Checks what the reader can see, splits the cells and builds the mesh.
-pub(crate) fn assemble(mut grid: RawGrid, file: &str) -> Result<VtkRead, VtkError> {
+pub(crate) fn assemble_with(
+    mut grid: RawGrid,
+    file: &str,
+    opts: &ReadOptions,
+) -> Result<VtkRead, VtkError> {
     let npoints = grid.points.len() / 3;
     if u32::try_from(npoints).is_err() {
         return Err(VtkError::Unsupported {
@@ -59,14 +101,26 @@ pub(crate) fn assemble(mut grid: RawGrid, file: &str) -> Result<VtkRead, VtkErro
             value: npoints.to_string(),
         });
     }
-    let points = finite_points(&grid.points, &grid.points_section, file)?;
+    let origin = centring(&grid.points);
+    let mut points = finite_points(&grid.points, origin, &grid.points_section, file)?;
+    separate_inline_faces(&mut grid, file)?;
     let mut warnings = std::mem::take(&mut grid.warnings);
-    let cells = CellTable::new(&grid, npoints, file)?;
+    let cells = CellTable::new(
+        &grid.offsets,
+        &grid.connectivity,
+        grid.types.len(),
+        npoints,
+        file,
+    )?;
 
     let mut tets = Vec::new();
+    let mut added = AddedPoints::new(npoints);
+    let mut tet_cells = Vec::new();
     let mut counts = CellCounts::default();
+    let mut subdivided: BTreeMap<i64, SubdividedCells> = BTreeMap::new();
     let mut lower_dim: BTreeMap<i64, usize> = BTreeMap::new();
     let mut dropped = 0;
+    let mut resplit = 0;
     let mut volume_cell = vec![false; cells.len()];
     for (c, &type_id) in grid.types.iter().enumerate() {
         let ids = cells.cell(c);
@@ -86,33 +140,100 @@ pub(crate) fn assemble(mut grid: RawGrid, file: &str) -> Result<VtkRead, VtkErro
             }
             _ => {}
         }
-        let expected = kind.point_count().unwrap_or(0);
-        if ids.len() != expected {
-            return Err(VtkError::CellSize {
-                file: file.into(),
-                cell: c,
-                type_id,
-                type_name: type_name(type_id),
-                expected,
-                found: ids.len(),
-            });
+        if let Some(expected) = kind.point_count() {
+            if ids.len() != expected {
+                return Err(VtkError::CellSize {
+                    file: file.into(),
+                    cell: c,
+                    type_id,
+                    type_name: type_name(type_id),
+                    expected,
+                    found: ids.len(),
+                });
+            }
         }
         volume_cell[c] = true;
-        let before = tets.len();
-        dropped += split_cell(kind, ids, &mut tets);
-        let made = tets.len() - before;
+        let (tets_before, points_before) = (tets.len(), added.len());
+        match kind {
+            _ if kind.is_higher_order() => {
+                let mut s = Subdivision {
+                    points: &grid.points,
+                    added: &mut added,
+                    tets: &mut tets,
+                    dropped: 0,
+                };
+                subdivide(kind, ids, opts.linearize, &mut s);
+                dropped += s.dropped;
+            }
+            CellKind::Polyhedron | CellKind::PentagonalPrism | CellKind::HexagonalPrism => {
+                let faces = match kind {
+                    CellKind::PentagonalPrism => prism_faces(ids, 5),
+                    CellKind::HexagonalPrism => prism_faces(ids, 6),
+                    _ => checked_faces(&grid.polyhedron_faces, c, npoints, file)?,
+                };
+                dropped += split_polyhedron(&faces, &mut added, &mut tets);
+            }
+            _ => {
+                dropped += split_cell(kind, ids, &mut tets);
+                if kind == CellKind::Hexahedron
+                    && !one_orientation(&tets[tets_before..], &grid.points)
+                {
+                    let cones = hexahedron_cones(ids);
+                    if let Some(better) =
+                        cones.into_iter().find(|c| one_orientation(c, &grid.points))
+                    {
+                        tets.truncate(tets_before);
+                        tets.extend(better);
+                        resplit += 1;
+                    }
+                }
+            }
+        }
+        let made = tets.len() - tets_before;
+        tet_cells.resize(tets.len(), grid.cell_number(c));
         match kind {
             CellKind::Tetra => counts.tetra += 1,
             CellKind::Hexahedron => counts.hexahedra += 1,
             CellKind::Voxel => counts.voxels += 1,
             CellKind::Wedge => counts.wedges += 1,
             CellKind::Pyramid => counts.pyramids += 1,
-            _ => {}
+            _ => {
+                let entry = subdivided.entry(type_id).or_insert(SubdividedCells {
+                    type_id,
+                    name: type_name(type_id),
+                    cells: 0,
+                    tets: 0,
+                    points_added: 0,
+                });
+                entry.cells += 1;
+                entry.tets += made;
+                entry.points_added += added.len() - points_before;
+            }
         }
         if kind != CellKind::Tetra {
             counts.tets_from_split += made;
         }
     }
+    counts.subdivided = subdivided.into_values().collect();
+    counts.points_added = added.len();
+    let total_points = npoints + added.len();
+    if u32::try_from(total_points).is_err() {
+        return Err(VtkError::Unsupported {
+            file: file.into(),
+            section: grid.points_section,
+            what: "point count with the points the splits add (tetrahedra index points with u32)",
+            value: total_points.to_string(),
+        });
+    }
+    added.extend(&mut grid.points, 3);
+    // Interpolation weights below 0 extrapolate: recheck the new points.
+    let section = format!("{} (points added by the splits)", grid.points_section);
+    points.extend(finite_points(
+        &grid.points[3 * npoints..],
+        origin,
+        &section,
+        file,
+    )?);
     counts.skipped_lower_dim = lower_dim.values().sum();
     if counts.skipped_lower_dim > 0 {
         let per_type: Vec<String> = lower_dim
@@ -125,6 +246,12 @@ pub(crate) fn assemble(mut grid: RawGrid, file: &str) -> Result<VtkRead, VtkErro
             per_type.join(", ")
         ));
     }
+    if resplit > 0 {
+        warnings.push(format!(
+            "{resplit} distorted hexahedra split from another corner (same face diagonals, so \
+             still conforming): the default split made tetrahedra of both orientations"
+        ));
+    }
     if dropped > 0 {
         warnings.push(format!(
             "dropped {dropped} zero-volume tetrahedra from cells with repeated point indices"
@@ -132,8 +259,10 @@ pub(crate) fn assemble(mut grid: RawGrid, file: &str) -> Result<VtkRead, VtkErro
     }
 
     let mut fields = Vec::new();
-    for array in &grid.point_arrays {
-        let (name, values) = per_tuple(array, npoints, file)?;
+    for array in &mut grid.point_arrays {
+        check_tuples(array, npoints, file)?;
+        added.extend(&mut array.values, array.components);
+        let (name, values) = per_tuple(array, total_points, file)?;
         fields.push(ScalarField {
             name,
             values: to_f32(&values, &array.section, file)?,
@@ -143,7 +272,7 @@ pub(crate) fn assemble(mut grid: RawGrid, file: &str) -> Result<VtkRead, VtkErro
         let users = cells.point_users(&volume_cell, npoints);
         for array in &grid.cell_arrays {
             let (mut name, cell_values) = per_tuple(array, cells.len(), file)?;
-            let averaged = match &array.defined {
+            let mut averaged = match &array.defined {
                 None => cells.average_to_points(&cell_values, &volume_cell, &users),
                 Some(defined) => {
                     let used = mask_cells(&volume_cell, defined, &array.section, file)?;
@@ -151,6 +280,7 @@ pub(crate) fn assemble(mut grid: RawGrid, file: &str) -> Result<VtkRead, VtkErro
                     cells.average_to_points(&cell_values, &used, &users)
                 }
             };
+            added.extend(&mut averaged, 1);
             let renamed = fields.iter().any(|f| f.name == name);
             if renamed {
                 name.push_str("_cell");
@@ -186,6 +316,8 @@ pub(crate) fn assemble(mut grid: RawGrid, file: &str) -> Result<VtkRead, VtkErro
         cells: counts,
         dataset: grid.dataset,
         pieces: grid.pieces,
+        origin,
+        tet_cells,
     })
 }
 
@@ -212,28 +344,74 @@ fn mask_cells(
         .collect())
 }
 
-fn finite_points(xyz: &[f64], section: &str, file: &str) -> Result<Vec<Vec3>, VtkError> {
+/// The origin the points are stored relative to ([`crate::centring_origin`]:
+/// the centre of their bounds when they lie far from zero; `xyz` holds x,
+/// y, z per point, in f64 as read).
+fn centring(xyz: &[f64]) -> DVec3 {
+    let wide = |p: &[f64]| DVec3::new(p[0], p[1], p[2]);
+    crate::geometry::bounds_f64(xyz.chunks_exact(3).map(wide))
+        .map_or(DVec3::ZERO, |(lo, hi)| crate::centring_origin(lo, hi))
+}
+
+/// The points relative to `origin`, computed in f64 and only then rounded
+/// to f32. A coordinate that is not finite, or beyond f32's range, is an
+/// error (as every value read).
+fn finite_points(
+    xyz: &[f64],
+    origin: DVec3,
+    section: &str,
+    file: &str,
+) -> Result<Vec<Vec3>, VtkError> {
+    let not_finite = |i: usize, axis: usize, value: f64| VtkError::NonFinite {
+        file: file.into(),
+        section: format!("{section}, point {i} coordinate {}", ["x", "y", "z"][axis]),
+        index: 3 * i + axis,
+        value,
+    };
+    if let Some(at) = xyz.iter().position(|&v| !(v as f32).is_finite()) {
+        return Err(not_finite(at / 3, at % 3, xyz[at]));
+    }
+    let wide = |p: &[f64]| DVec3::new(p[0], p[1], p[2]);
     let mut points = Vec::with_capacity(xyz.len() / 3);
     for (i, p) in xyz.chunks_exact(3).enumerate() {
-        let q = Vec3::new(p[0] as f32, p[1] as f32, p[2] as f32);
-        for (axis, (&wide, narrow)) in p.iter().zip(q.to_array()).enumerate() {
-            if !narrow.is_finite() {
-                return Err(VtkError::NonFinite {
-                    file: file.into(),
-                    section: format!("{section}, point {i} coordinate {}", ["x", "y", "z"][axis]),
-                    index: 3 * i + axis,
-                    value: wide,
-                });
-            }
+        let q = (wide(p) - origin).as_vec3();
+        if let Some(axis) = (0..3).find(|&a| !q[a].is_finite()) {
+            return Err(not_finite(i, axis, p[axis]));
         }
         points.push(q);
     }
     Ok(points)
 }
 
-/// One value per tuple: the value itself, or the Euclidean norm of a
-/// multi-component tuple (named `<name>_magnitude`). Checks the count.
-fn per_tuple(array: &RawArray, tuples: usize, file: &str) -> Result<(String, Vec<f64>), VtkError> {
+/// Whether the tetrahedra (of one cell) all have the same strict
+/// orientation on the file's f64 points (`xyz`: x, y, z per point): all
+/// positive for a well-shaped cell, all negative for one listed inverted.
+/// Volumes are taken relative to each tetrahedron's first point, so far
+/// coordinates lose nothing of the cell's shape.
+fn one_orientation(tets: &[[u32; 4]], xyz: &[f64]) -> bool {
+    let point = |i: u32| {
+        let i = 3 * i as usize;
+        DVec3::new(xyz[i], xyz[i + 1], xyz[i + 2])
+    };
+    let mut signs = tets.iter().map(|t| {
+        let p = t.map(point);
+        let v = (p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0]));
+        if v > 0.0 {
+            1
+        } else if v < 0.0 {
+            -1
+        } else {
+            0
+        }
+    });
+    let Some(first) = signs.next() else {
+        return true;
+    };
+    first != 0 && signs.all(|s| s == first)
+}
+
+/// Checks an array has `tuples` tuples.
+fn check_tuples(array: &RawArray, tuples: usize, file: &str) -> Result<(), VtkError> {
     let k = array.components.max(1);
     if array.values.len() != tuples.saturating_mul(k) {
         return Err(VtkError::CountMismatch {
@@ -244,6 +422,14 @@ fn per_tuple(array: &RawArray, tuples: usize, file: &str) -> Result<(String, Vec
             found: array.values.len(),
         });
     }
+    Ok(())
+}
+
+/// One value per tuple: the value itself, or the Euclidean norm of a
+/// multi-component tuple (named `<name>_magnitude`). Checks the count.
+fn per_tuple(array: &RawArray, tuples: usize, file: &str) -> Result<(String, Vec<f64>), VtkError> {
+    let k = array.components.max(1);
+    check_tuples(array, tuples, file)?;
     if let Some(i) = array.values.iter().position(|v| !v.is_finite()) {
         return Err(VtkError::NonFinite {
             file: file.into(),
@@ -287,13 +473,14 @@ struct CellTable<'a> {
 }
 
 impl<'a> CellTable<'a> {
-    fn new(grid: &'a RawGrid, npoints: usize, file: &str) -> Result<Self, VtkError> {
-        let ncells = grid.types.len();
-        let offsets: &[usize] = if grid.offsets.is_empty() {
-            &[0]
-        } else {
-            &grid.offsets
-        };
+    fn new(
+        offsets: &'a [usize],
+        connectivity: &[i64],
+        ncells: usize,
+        npoints: usize,
+        file: &str,
+    ) -> Result<Self, VtkError> {
+        let offsets: &[usize] = if offsets.is_empty() { &[0] } else { offsets };
         let invalid = |message: String| VtkError::Invalid {
             file: file.into(),
             section: "cells".into(),
@@ -305,16 +492,16 @@ impl<'a> CellTable<'a> {
                 offsets.len().saturating_sub(1)
             )));
         }
-        let mut ids = Vec::with_capacity(grid.connectivity.len());
+        let mut ids = Vec::with_capacity(connectivity.len());
         for c in 0..ncells {
             let (start, end) = (offsets[c], offsets[c + 1]);
-            if end < start || end > grid.connectivity.len() {
+            if end < start || end > connectivity.len() {
                 return Err(invalid(format!(
                     "cell {c} spans connectivity entries {start}..{end} of {}",
-                    grid.connectivity.len()
+                    connectivity.len()
                 )));
             }
-            for &index in &grid.connectivity[start..end] {
+            for &index in &connectivity[start..end] {
                 match u32::try_from(index) {
                     Ok(i) if (i as usize) < npoints => ids.push(i),
                     _ => {
@@ -328,11 +515,11 @@ impl<'a> CellTable<'a> {
                 }
             }
         }
-        if offsets[ncells] != grid.connectivity.len() {
+        if offsets[ncells] != connectivity.len() {
             return Err(invalid(format!(
                 "the cells use {} connectivity entries but there are {}",
                 offsets[ncells],
-                grid.connectivity.len()
+                connectivity.len()
             )));
         }
         Ok(CellTable { offsets, ids })

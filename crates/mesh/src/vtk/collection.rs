@@ -11,11 +11,11 @@ use quick_xml::events::{BytesStart, Event};
 use quick_xml::Reader;
 use rayon::prelude::*;
 
-use super::assemble::{assemble, RawGrid};
+use super::assemble::{assemble_with, RawGrid};
 use super::cells::{classify, type_name, CellKind};
 use super::pieces::{drop_ghosts, drop_global_ids, weld};
 use super::vtu_xml::find;
-use super::{read_path, vtu_read, VtkError, VtkRead};
+use super::{read_path, vtu_read, ReadOptions, VtkError, VtkRead};
 
 /// The parallel dataset elements and the serial type of their pieces.
 const PARALLEL: [&str; 4] = [
@@ -25,23 +25,30 @@ const PARALLEL: [&str; 4] = [
     "PImageData",
 ];
 
-pub(crate) fn read_parallel(path: &Path) -> Result<VtkRead, VtkError> {
+pub(crate) fn read_parallel(path: &Path, opts: &ReadOptions) -> Result<VtkRead, VtkError> {
     let name = path.display().to_string();
     let grid = parallel_raw(path)?;
-    ready(grid, &name)
+    ready(grid, &name, opts)
 }
 
-pub(crate) fn read_multiblock(path: &Path, block: Option<&str>) -> Result<VtkRead, VtkError> {
+pub(crate) fn read_multiblock(
+    path: &Path,
+    block: Option<&str>,
+    opts: &ReadOptions,
+) -> Result<VtkRead, VtkError> {
     let name = path.display().to_string();
     let grid = multiblock_raw(path, block, 0)?;
-    ready(grid, &name)
+    ready(grid, &name, opts)
 }
 
 /// The last steps shared by both: no ids as fields, a volume to render.
-fn ready(mut grid: RawGrid, name: &str) -> Result<VtkRead, VtkError> {
+/// The pieces and blocks are welded into one raw grid first, so the
+/// options (how higher-order cells are split) apply to all of them at once
+/// and the points a split adds on a face two pieces share are made once.
+fn ready(mut grid: RawGrid, name: &str, opts: &ReadOptions) -> Result<VtkRead, VtkError> {
     drop_global_ids(&mut grid);
     require_volume(&grid, name, "")?;
-    assemble(grid, name)
+    assemble_with(grid, name, opts)
 }
 
 /// An XML element with its attributes and children (the files naming

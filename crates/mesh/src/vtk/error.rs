@@ -68,7 +68,8 @@ pub enum VtkError {
     /// type id.
     #[error(
         "{file}: cell {cell}: VTK cell type {type_id} ({type_name}) is not supported; \
-         volume cells must be tetra (10), voxel (11), hexahedron (12), wedge (13) or pyramid (14)"
+         volume cells must be linear (10-16), quadratic (24-27, 29, 32), Lagrange of order 2 \
+         (71-73) or polyhedra (42)"
     )]
     UnsupportedCell {
         file: String,
@@ -88,6 +89,15 @@ pub enum VtkError {
         type_name: &'static str,
         expected: usize,
         found: usize,
+    },
+
+    /// A polyhedron whose faces are missing, malformed, out of range or do
+    /// not close a volume.
+    #[error("{file}: cell {cell}: polyhedron: {message}")]
+    BadPolyhedron {
+        file: String,
+        cell: usize,
+        message: String,
     },
 
     /// A dataset type the readers do not read (polygonal data...).

@@ -9,12 +9,12 @@
 //! NORMALS, TEXTURE_COORDINATES, TENSORS, COLOR_SCALARS, lookup tables and
 //! id arrays are read past (with a warning where they carry data).
 
-use super::assemble::{assemble, RawArray, RawGrid};
+use super::assemble::{assemble_with, RawArray, RawGrid};
 use super::legacy_lex::{decode_name, Cursor};
 use super::legacy_structured::{Kind, Structured};
 use super::numeric::Scalar;
 use super::pieces::finish_grid;
-use super::{VtkError, VtkRead};
+use super::{ReadOptions, VtkError, VtkRead};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Attributes {
@@ -66,7 +66,7 @@ struct Parser<'a> {
 }
 
 /// Parses a legacy VTK file held in memory; `name` is used in messages.
-pub(crate) fn read(bytes: &[u8], name: &str) -> Result<VtkRead, VtkError> {
+pub(crate) fn read_with(bytes: &[u8], name: &str, opts: &ReadOptions) -> Result<VtkRead, VtkError> {
     let mut p = Parser {
         cur: Cursor::new(bytes, name),
         grid: RawGrid::default(),
@@ -113,7 +113,7 @@ pub(crate) fn read(bytes: &[u8], name: &str) -> Result<VtkRead, VtkError> {
     if grid.dataset != "UnstructuredGrid" {
         super::collection::require_volume(&grid, name, "")?;
     }
-    assemble(grid, name)
+    assemble_with(grid, name, opts)
 }
 
 impl Parser<'_> {

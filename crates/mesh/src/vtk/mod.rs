@@ -9,11 +9,15 @@
 //! build topology: the mesh loader does that afterwards.
 //!
 //! Conventions of the readers:
-//! - tetra, voxel, hexahedron, wedge and pyramid cells are kept; the others
-//!   are split into tetrahedra conformingly (see `split.rs`); 0-, 1- and
-//!   2-D cells are skipped with a warning that counts them; other 3-D cells
-//!   (quadratic, higher order, polyhedra, prisms with 5 or 6 sides) are an
-//!   error naming the type and the cell;
+//! - tetra cells are kept; voxel, hexahedron, wedge and pyramid cells are
+//!   split into tetrahedra conformingly (see `split.rs`); quadratic and
+//!   order-2 Lagrange tetra, hexahedra, wedges and pyramids are subdivided
+//!   through their nodes (`split_quadratic.rs`; [`Linearize::Corners`]
+//!   keeps their corners only); polyhedra and pentagonal/hexagonal prisms
+//!   are split around a centroid (`polyhedron.rs`); the points these add
+//!   come after the file's, their fields interpolated; 0-, 1- and 2-D cells
+//!   are skipped with a warning that counts them; other 3-D cells (Bezier,
+//!   higher orders, ...) are an error naming the type and the cell;
 //! - a point array with one component becomes a field of its name; one with
 //!   several components (SCALARS with numComp > 1, VECTORS, multi-component
 //!   FIELD or DataArray) becomes its Euclidean magnitude `<name>_magnitude`;
@@ -27,6 +31,7 @@
 //!   hidden (32), and cells touching points flagged hidden (2), are dropped;
 //!   pieces and blocks are welded into one mesh (see `pieces.rs`).
 
+mod added_points;
 mod assemble;
 mod cells;
 mod collection;
@@ -37,7 +42,10 @@ mod legacy_structured;
 mod legacy_write;
 mod numeric;
 mod pieces;
+mod poly_grid;
+mod polyhedron;
 mod split;
+mod split_quadratic;
 mod structured_grid;
 mod vtu_data;
 mod vtu_read;
@@ -48,7 +56,7 @@ mod xml_structured;
 
 use std::path::Path;
 
-pub(crate) use assemble::{assemble, RawArray, RawGrid};
+pub(crate) use assemble::{assemble_with, RawArray, RawGrid};
 
 pub use error::VtkError;
 pub use legacy_write::write_legacy;
@@ -69,6 +77,15 @@ pub struct VtkRead {
     /// when they differ).
     pub dataset: &'static str,
     pub pieces: PieceCounts,
+    /// The points are stored relative to this origin (f64; see
+    /// [`crate::centring_origin`]): a point's coordinates as in the file
+    /// are `origin + point`.
+    pub origin: glam::DVec3,
+    /// Per tetrahedron, the index of the file's cell it was split from
+    /// (ghost and lower-dimensional cells counted; for pieces and blocks,
+    /// each piece's cells numbered on from those of the pieces before it,
+    /// in the order the file names them).
+    pub tet_cells: Vec<u32>,
 }
 
 /// What joining pieces and blocks did (zero for a single serial file
@@ -90,9 +107,41 @@ pub struct PieceCounts {
     pub hidden_cells_dropped: usize,
 }
 
+/// What to do with the mid-edge, face and body nodes of quadratic and
+/// Lagrange cells.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum Linearize {
+    /// Subdivide each cell into linear tetrahedra through all its nodes,
+    /// so the field values there are used.
+    #[default]
+    Subdivide,
+    /// Keep the corner nodes only (the linear cell), as VTK's unstructured
+    /// volume mappers do; the other nodes stay as unused points.
+    Corners,
+}
+
+/// Options of the `*_with` readers.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct ReadOptions {
+    pub linearize: Linearize,
+}
+
+/// Cells of one VTK type that were subdivided or split around a centroid.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SubdividedCells {
+    pub type_id: i64,
+    /// VTK's name of the type ("quadratic tetra").
+    pub name: &'static str,
+    pub cells: usize,
+    /// Tetrahedra they gave.
+    pub tets: usize,
+    /// Points added for them (computed face and body nodes, centroids).
+    pub points_added: usize,
+}
+
 /// How many cells of each kind were read, and how many tetrahedra the
 /// non-tetrahedral ones gave.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
 pub struct CellCounts {
     pub tetra: usize,
     pub hexahedra: usize,
@@ -102,8 +151,12 @@ pub struct CellCounts {
     /// Vertices, lines, triangles, quads, polygons...: not part of the
     /// volume, skipped.
     pub skipped_lower_dim: usize,
-    /// Tetrahedra made from hexahedra, wedges, pyramids and voxels.
+    /// Tetrahedra made from every cell that is not a linear tetra.
     pub tets_from_split: usize,
+    /// Higher-order cells, prisms and polyhedra, per type (by type id).
+    pub subdivided: Vec<SubdividedCells>,
+    /// Points added after the file's (the sum over `subdivided`).
+    pub points_added: usize,
 }
 
 /// How [`write_vtu`] stores its arrays.
@@ -129,12 +182,26 @@ fn read_path(path: &Path) -> Result<Vec<u8>, VtkError> {
 /// Reads a legacy `.vtk` file (UNSTRUCTURED_GRID, STRUCTURED_GRID,
 /// RECTILINEAR_GRID or STRUCTURED_POINTS; ASCII or BINARY).
 pub fn read_legacy_file(path: &Path) -> Result<VtkRead, VtkError> {
-    read_legacy_bytes(&read_path(path)?, &path.display().to_string())
+    read_legacy_file_with(path, &ReadOptions::default())
+}
+
+/// [`read_legacy_file`] with options.
+pub fn read_legacy_file_with(path: &Path, opts: &ReadOptions) -> Result<VtkRead, VtkError> {
+    read_legacy_bytes_with(&read_path(path)?, &path.display().to_string(), opts)
 }
 
 /// Reads a legacy VTK file held in memory; `name` is used in messages.
 pub fn read_legacy_bytes(bytes: &[u8], name: &str) -> Result<VtkRead, VtkError> {
-    legacy_read::read(bytes, name)
+    read_legacy_bytes_with(bytes, name, &ReadOptions::default())
+}
+
+/// [`read_legacy_bytes`] with options.
+pub fn read_legacy_bytes_with(
+    bytes: &[u8],
+    name: &str,
+    opts: &ReadOptions,
+) -> Result<VtkRead, VtkError> {
+    legacy_read::read_with(bytes, name, opts)
 }
 
 /// Reads a serial XML file: `.vtu` (UnstructuredGrid), `.vts`
@@ -142,19 +209,38 @@ pub fn read_legacy_bytes(bytes: &[u8], name: &str) -> Result<VtkRead, VtkError> 
 /// by its `<VTKFile type>`; ascii, base64 or appended data, optionally
 /// zlib-compressed.
 pub fn read_vtu_file(path: &Path) -> Result<VtkRead, VtkError> {
-    read_vtu_bytes(&read_path(path)?, &path.display().to_string())
+    read_vtu_file_with(path, &ReadOptions::default())
+}
+
+/// [`read_vtu_file`] with options.
+pub fn read_vtu_file_with(path: &Path, opts: &ReadOptions) -> Result<VtkRead, VtkError> {
+    read_vtu_bytes_with(&read_path(path)?, &path.display().to_string(), opts)
 }
 
 /// Reads a serial XML file held in memory; `name` is used in messages.
 pub fn read_vtu_bytes(bytes: &[u8], name: &str) -> Result<VtkRead, VtkError> {
-    vtu_read::read(bytes, name)
+    read_vtu_bytes_with(bytes, name, &ReadOptions::default())
+}
+
+/// [`read_vtu_bytes`] with options.
+pub fn read_vtu_bytes_with(
+    bytes: &[u8],
+    name: &str,
+    opts: &ReadOptions,
+) -> Result<VtkRead, VtkError> {
+    vtu_read::read_with(bytes, name, opts)
 }
 
 /// Reads a parallel XML file (`.pvtu`, `.pvts`, `.pvtr`, `.pvti`): every
 /// piece it names, relative to its folder, read in parallel, ghost cells
 /// dropped, shared points welded into one mesh.
 pub fn read_parallel_file(path: &Path) -> Result<VtkRead, VtkError> {
-    collection::read_parallel(path)
+    read_parallel_file_with(path, &ReadOptions::default())
+}
+
+/// [`read_parallel_file`] with options (applied to every piece).
+pub fn read_parallel_file_with(path: &Path, opts: &ReadOptions) -> Result<VtkRead, VtkError> {
+    collection::read_parallel(path, opts)
 }
 
 /// Reads a multi-block `.vtm` file: its volume blocks (any of the XML
@@ -162,5 +248,14 @@ pub fn read_parallel_file(path: &Path) -> Result<VtkRead, VtkError> {
 /// and surface-only blocks are skipped with a note. `block` keeps only the
 /// blocks of that name or path (`outer/inner`).
 pub fn read_multiblock_file(path: &Path, block: Option<&str>) -> Result<VtkRead, VtkError> {
-    collection::read_multiblock(path, block)
+    read_multiblock_file_with(path, block, &ReadOptions::default())
+}
+
+/// [`read_multiblock_file`] with options (applied to every block).
+pub fn read_multiblock_file_with(
+    path: &Path,
+    block: Option<&str>,
+    opts: &ReadOptions,
+) -> Result<VtkRead, VtkError> {
+    collection::read_multiblock(path, block, opts)
 }

@@ -18,6 +18,7 @@
 use std::collections::HashMap;
 
 use super::assemble::{RawArray, RawGrid};
+use super::poly_grid::{keep_cell_faces, separate_inline_faces, shift_faces};
 use super::VtkError;
 
 const GHOST_ARRAY: &str = "vtkGhostType";
@@ -78,6 +79,8 @@ fn take_flags(
 /// Drops duplicate and hidden cells and the cells touching hidden points,
 /// then the points no cell uses any more; counts them in `grid.pieces`.
 pub(crate) fn drop_ghosts(grid: &mut RawGrid, file: &str) -> Result<(), VtkError> {
+    // A legacy polyhedron's face stream is not a list of its points.
+    separate_inline_faces(grid, file)?;
     let npoints = grid.points.len() / 3;
     let ncells = grid.types.len();
     let point_flags = take_flags(&mut grid.point_arrays, npoints, file)?;
@@ -125,6 +128,12 @@ fn cell_points(grid: &RawGrid, c: usize) -> impl Iterator<Item = i64> + '_ {
 }
 
 fn keep_cells(grid: &mut RawGrid, keep: &[bool]) {
+    let numbers: Vec<u32> = (0..keep.len())
+        .filter(|&c| keep[c])
+        .map(|c| grid.cell_number(c))
+        .collect();
+    grid.cells_numbered = grid.numbered_cells();
+    grid.cell_numbers = numbers;
     let mut offsets = vec![0];
     let mut connectivity = Vec::with_capacity(grid.connectivity.len());
     let mut types = Vec::new();
@@ -149,6 +158,7 @@ fn keep_cells(grid: &mut RawGrid, keep: &[bool]) {
     grid.offsets = offsets;
     grid.connectivity = connectivity;
     grid.types = types;
+    keep_cell_faces(&mut grid.polyhedron_faces, keep);
 }
 
 /// Removes the points no cell uses (index checks are `assemble`'s: an
@@ -171,14 +181,16 @@ fn drop_unused_points(grid: &mut RawGrid) {
     if next as usize == npoints {
         return;
     }
+    let renumber = |p: i64| match usize::try_from(p).ok().and_then(|i| new_index.get(i)) {
+        // A face point no cell lists is out of range too.
+        Some(&n) if n != u32::MAX => i64::from(n),
+        // Keep it out of range for the new point count.
+        _ => i64::MAX,
+    };
     for p in &mut grid.connectivity {
-        if let Some(&n) = usize::try_from(*p).ok().and_then(|i| new_index.get(i)) {
-            *p = i64::from(n);
-        } else {
-            // Keep it out of range for the new point count.
-            *p = i64::MAX;
-        }
+        *p = renumber(*p);
     }
+    grid.polyhedron_faces = shift_faces(std::mem::take(&mut grid.polyhedron_faces), 0, renumber);
     let kept = |values: &[f64], k: usize| -> Vec<f64> {
         values
             .chunks_exact(k)
@@ -259,14 +271,25 @@ pub(crate) fn weld(grids: Vec<RawGrid>, file: &str) -> Result<RawGrid, VtkError>
             .collect();
         known.extend(fresh);
         let start = out.connectivity.len();
-        out.connectivity.extend(grid.connectivity.iter().map(|&p| {
+        let to_joined = |p: i64| {
             usize::try_from(p)
                 .ok()
                 .and_then(|p| map.get(p))
                 .map_or(i64::MAX, |&q| i64::from(q))
-        }));
+        };
+        out.connectivity
+            .extend(grid.connectivity.iter().map(|&p| to_joined(p)));
+        let faces = std::mem::take(&mut grid.polyhedron_faces);
+        out.polyhedron_faces
+            .extend(shift_faces(faces, out.types.len(), to_joined));
         out.offsets
             .extend(grid.offsets.iter().skip(1).map(|&o| start + o));
+        // A piece's cells are numbered on from all the cells (ghost and
+        // hidden ones included) of the pieces before it.
+        let numbered = out.cells_numbered as u32;
+        out.cell_numbers
+            .extend((0..grid.types.len()).map(|c| numbered + grid.cell_number(c)));
+        out.cells_numbered += grid.numbered_cells();
         out.types.extend_from_slice(&grid.types);
         if npoints > 0 {
             let arrays = grid

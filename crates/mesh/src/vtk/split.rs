@@ -178,6 +178,38 @@ fn hexahedron(emit: &mut Emitter<'_, '_>) {
     }
 }
 
+/// Other splits of a hexahedron (VTK order) with the same face diagonals as
+/// [`split_cell`]'s, so still conforming: the cone from each vertex that the
+/// diagonals of its three faces pass through (6 tets, oriented like the
+/// parent cell; tets repeating a point dropped). A distorted cell whose
+/// default split has tets of both orientations may have a cone without.
+pub(crate) fn hexahedron_cones(ids: &[u32]) -> Vec<Vec<[u32; 4]>> {
+    let faces = HEX_FACES.map(|q| (q, quad_triangles(ids, q)));
+    (0..8)
+        .filter(|&v| {
+            faces
+                .iter()
+                .filter(|(q, _)| q.contains(&v))
+                .all(|(_, t)| t[0][0] == v || t[0][2] == v)
+        })
+        .map(|v| {
+            let mut out = Vec::with_capacity(6);
+            let mut emit = Emitter {
+                ids,
+                reference: &HEX_REF,
+                out: &mut out,
+                dropped: 0,
+            };
+            for (_, t) in faces.iter().filter(|(q, _)| !q.contains(&v)) {
+                for tri in t {
+                    emit.tet(v, *tri);
+                }
+            }
+            out
+        })
+        .collect()
+}
+
 /// The two triangles (local vertex indices) of quad `q`, cut by the
 /// diagonal through its vertex with the smallest global index (the first
 /// such vertex on ties, which only collapsed cells have).

@@ -2,20 +2,21 @@
 //! and concatenated into one raw grid; the structured datasets (`.vts`,
 //! `.vtr`, `.vti`) go to `xml_structured`.
 
-use super::assemble::{assemble, RawArray, RawGrid};
+use super::assemble::{assemble_with, RawArray, RawGrid};
 use super::numeric::Scalar;
 use super::pieces::finish_grid;
+use super::polyhedron;
 use super::vtu_data::ArrayDecoder;
 use super::vtu_xml::{self, XmlArray, XmlPiece};
-use super::{xml_structured, VtkError, VtkRead};
+use super::{xml_structured, ReadOptions, VtkError, VtkRead};
 
 /// Parses a serial VTK XML file held in memory; `name` is used in messages.
-pub(crate) fn read(bytes: &[u8], name: &str) -> Result<VtkRead, VtkError> {
+pub(crate) fn read_with(bytes: &[u8], name: &str, opts: &ReadOptions) -> Result<VtkRead, VtkError> {
     let grid = finish_grid(read_raw(bytes, name)?, name)?;
     if grid.dataset != "UnstructuredGrid" {
         super::collection::require_volume(&grid, name, "")?;
     }
-    assemble(grid, name)
+    assemble_with(grid, name, opts)
 }
 
 /// The raw grid of a serial VTK XML file of any dataset type read.
@@ -231,7 +232,69 @@ fn read_cells(
         }
         begin = end;
     }
+    if types.contains(&42) {
+        read_polyhedra(d, piece, k, &types, points_before, cells_before, grid)?;
+    }
     grid.types.extend(types);
+    Ok(())
+}
+
+/// The faces of the piece's polyhedra (see `polyhedron.rs` for the two
+/// layouts), their point indices shifted like the connectivity's.
+fn read_polyhedra(
+    d: &ArrayDecoder<'_, '_>,
+    piece: &XmlPiece,
+    k: usize,
+    types: &[i64],
+    points_before: usize,
+    cells_before: usize,
+    grid: &mut RawGrid,
+) -> Result<(), VtkError> {
+    let array = |name: &str| -> Result<Option<Vec<i64>>, VtkError> {
+        let found = piece.cells.iter().find(|a| a.name.as_deref() == Some(name));
+        found
+            .map(|a| d.ints(a, &section(a, k, "Cells")))
+            .transpose()
+    };
+    let per_cell = if let (Some(faces), Some(offsets)) = (array("faces")?, array("faceoffsets")?) {
+        polyhedron::from_face_stream(&faces, &offsets, types)
+    } else if let (Some(fc), Some(fo), Some(pf), Some(po)) = (
+        array("face_connectivity")?,
+        array("face_offsets")?,
+        array("polyhedron_to_faces")?,
+        array("polyhedron_offsets")?,
+    ) {
+        polyhedron::from_face_tables(&fc, &fo, &pf, &po, types)
+    } else {
+        return Err(piece_error(
+            d.file,
+            piece,
+            k,
+            "polyhedra (type 42) but <Cells> has neither \"faces\" + \"faceoffsets\" nor \
+             \"face_connectivity\" + \"face_offsets\" + \"polyhedron_to_faces\" + \
+             \"polyhedron_offsets\""
+                .into(),
+        ));
+    };
+    let per_cell = per_cell.map_err(|(c, message)| VtkError::BadPolyhedron {
+        file: d.file.into(),
+        cell: cells_before + c,
+        message,
+    })?;
+    for (c, mut faces) in per_cell {
+        for index in faces.iter_mut().flatten() {
+            if *index < 0 || *index as u64 >= piece.npoints as u64 {
+                return Err(VtkError::BadIndex {
+                    file: d.file.into(),
+                    cell: cells_before + c,
+                    index: *index,
+                    npoints: piece.npoints,
+                });
+            }
+            *index += points_before as i64;
+        }
+        grid.polyhedron_faces.insert(cells_before + c, faces);
+    }
     Ok(())
 }
 

@@ -1,0 +1,202 @@
+//! Cells that cannot be walked are left out of the mesh instead of
+//! rejecting it: a few bad cells never stop a render.
+//!
+//! - A flat tetrahedron (see [`crate::DEGENERATE_HEIGHT_ULPS`]) is dropped
+//!   on its own: it has no volume to speak of.
+//! - A cell split into tetrahedra of both orientations is tangled (a
+//!   hexahedron deformed until its faces fold, as a crushed can's): no
+//!   orientation of its pieces is right, and they overlap each other. The
+//!   whole cell is left out.
+//! - Two tetrahedra sharing a face but lying on the same side of it overlap
+//!   (an inverted cell next to a good one): both cells are left out, since
+//!   the face alone cannot tell which is wrong.
+//! - Tetrahedra on a face shared by more than two are left out.
+//!
+//! What remains is a valid mesh with holes. The faces around a hole are
+//! boundary faces: a ray leaves there and re-enters beyond the hole through
+//! the boundary BVH, as at a seam or a non-conforming interface, so the
+//! image is that of the mesh without those cells, with no streaks.
+
+use rayon::prelude::*;
+
+use crate::validate::face_side_conflicts;
+use crate::{tet_shape, MeshError, TetMesh, Topology};
+
+/// What was left out of the walk, and how much of the mesh that is.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ExcludedCells {
+    /// The cells left out, ascending: their index among the file's cells
+    /// (VTK; for parallel and multi-block files a piece's cells are
+    /// numbered on from all the cells of the pieces before it, ghost cells
+    /// included; Exodus: the 0-based element number across all blocks), or
+    /// the tetrahedron's index as given (PLOT3D, memory).
+    pub cells: Vec<u32>,
+    /// Of those: cells split into tetrahedra of both orientations.
+    pub tangled: usize,
+    /// Cells with a tetrahedron overlapping a neighbour across a shared
+    /// face.
+    pub overlapping: usize,
+    /// Cells with a tetrahedron on a face shared by more than two.
+    pub non_manifold: usize,
+    /// Tetrahedra removed with those cells.
+    pub tets: usize,
+    /// Their volume (sum of the tetrahedra's absolute volumes).
+    pub volume: f64,
+    /// That volume over the absolute volume of every tetrahedron read.
+    pub volume_share: f64,
+    /// Flat tetrahedra dropped one by one (not counted in `cells`).
+    pub flat_tets: usize,
+}
+
+impl ExcludedCells {
+    /// Whether anything was left out.
+    pub fn is_empty(&self) -> bool {
+        self.cells.is_empty() && self.flat_tets == 0
+    }
+
+    /// The findings as sentences (none when nothing was left out).
+    pub fn warnings(&self) -> Vec<String> {
+        let mut warnings = Vec::new();
+        if !self.cells.is_empty() {
+            let shown: Vec<String> = self.cells.iter().take(10).map(u32::to_string).collect();
+            let more = if self.cells.len() > 10 { ", ..." } else { "" };
+            warnings.push(format!(
+                "left out {} cells that cannot be walked ({} tangled, {} overlapping a \
+                 neighbour, {} on a face of more than two tetrahedra): {} tetrahedra, {:.4}% of \
+                 the mesh volume; rays cross the gap by leaving and re-entering the mesh \
+                 (cells {}{more})",
+                self.cells.len(),
+                self.tangled,
+                self.overlapping,
+                self.non_manifold,
+                self.tets,
+                100.0 * self.volume_share,
+                shown.join(", ")
+            ));
+        }
+        if self.flat_tets > 0 {
+            warnings.push(format!(
+                "dropped {} flat tetrahedra (height within f32 rounding of their coordinates)",
+                self.flat_tets
+            ));
+        }
+        warnings
+    }
+}
+
+/// Why a cell was left out.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Reason {
+    Tangled,
+    Overlapping,
+    NonManifold,
+}
+
+/// Leaves out of `mesh` what cannot be walked (see the module docs),
+/// orients the rest and builds its topology. `tet_cells` gives each
+/// tetrahedron's cell; empty when each tetrahedron is its own cell.
+/// Expects [`crate::validate::check_input`] to have passed. Returns the
+/// topology, what was left out and how many tetrahedra were reoriented.
+///
+/// # Errors
+/// [`MeshError::NothingLeft`] when nothing is left; [`MeshError::TooLarge`].
+pub(crate) fn exclude_bad_cells(
+    mesh: &mut TetMesh,
+    tet_cells: &[u32],
+) -> Result<(Topology, ExcludedCells, usize), MeshError> {
+    let n = mesh.tets.len();
+    let cell_of = |t: usize| {
+        if tet_cells.len() == n {
+            tet_cells[t]
+        } else {
+            t as u32
+        }
+    };
+    let shapes: Vec<(f64, bool)> = (0..n)
+        .into_par_iter()
+        .map(|t| {
+            let shape = tet_shape(mesh.tet_points(t));
+            (shape.volume6 / 6.0, shape.is_degenerate())
+        })
+        .collect();
+    let total: f64 = shapes.iter().map(|(v, _)| v.abs()).sum();
+    let ncells = (0..n).map(|t| cell_of(t) as usize + 1).max().unwrap_or(0);
+    let mut reason: Vec<Option<Reason>> = vec![None; ncells];
+
+    // Orientation per cell: +1 seen positive, +2 seen negative.
+    let mut signs = vec![0u8; ncells];
+    for (t, &(volume, flat)) in shapes.iter().enumerate() {
+        if !flat {
+            signs[cell_of(t) as usize] |= if volume > 0.0 { 1 } else { 2 };
+        }
+    }
+    for (c, &s) in signs.iter().enumerate() {
+        if s == 3 {
+            reason[c] = Some(Reason::Tangled);
+        }
+    }
+
+    let given = std::mem::take(&mut mesh.tets);
+    let flat_tets = shapes.iter().filter(|(_, flat)| *flat).count();
+    let keep =
+        |t: usize, reason: &[Option<Reason>]| !shapes[t].1 && reason[cell_of(t) as usize].is_none();
+    let mut reoriented;
+    let topology = loop {
+        // Current tetrahedron -> its index as given.
+        let original: Vec<usize> = (0..n).filter(|&t| keep(t, &reason)).collect();
+        if original.is_empty() {
+            return Err(MeshError::NothingLeft {
+                tets: n,
+                flat: flat_tets,
+                cells: reason.iter().filter(|r| r.is_some()).count(),
+            });
+        }
+        mesh.tets = original.iter().map(|&t| given[t]).collect();
+        reoriented = mesh.orient();
+        let topology = match Topology::build(mesh) {
+            Ok(topology) => topology,
+            Err(MeshError::NonManifoldFace { tets, .. }) => {
+                for t in tets {
+                    reason[cell_of(original[t as usize]) as usize] = Some(Reason::NonManifold);
+                }
+                continue;
+            }
+            Err(e) => return Err(e),
+        };
+        let conflicts = face_side_conflicts(mesh, &topology);
+        if conflicts.is_empty() {
+            break topology;
+        }
+        for (a, b, _) in conflicts {
+            for t in [a, b] {
+                reason[cell_of(original[t as usize]) as usize] = Some(Reason::Overlapping);
+            }
+        }
+    };
+
+    let mut excluded = ExcludedCells {
+        flat_tets,
+        ..ExcludedCells::default()
+    };
+    for (t, &(volume, flat)) in shapes.iter().enumerate() {
+        if !flat && reason[cell_of(t) as usize].is_some() {
+            excluded.tets += 1;
+            excluded.volume += volume.abs();
+        }
+    }
+    for (c, r) in reason.iter().enumerate() {
+        let Some(r) = r else { continue };
+        excluded.cells.push(c as u32);
+        match r {
+            Reason::Tangled => excluded.tangled += 1,
+            Reason::Overlapping => excluded.overlapping += 1,
+            Reason::NonManifold => excluded.non_manifold += 1,
+        }
+    }
+    excluded.volume_share = if total > 0.0 {
+        excluded.volume / total
+    } else {
+        0.0
+    };
+    Ok((topology, excluded, reoriented))
+}
