@@ -37,6 +37,16 @@ const VOLUMES: [(&str, u64); 10] = [
     ("uGridEx.vtk", 4),
 ];
 
+/// Cell counts read from the files' headers: `NumberOfCells` of the XML
+/// files, `num_elem` of the Exodus file.
+const FILE_CELLS: [(&str, u64); 4] = [
+    ("disk_out_ref.ex2", 7472),
+    ("QuadraticTetra.vtu", 96),
+    // 39 of its cells are tangled and left out of the walk.
+    ("can.vtu", 4800),
+    ("StructuredGrid.vts", 440),
+];
+
 #[test]
 fn every_volumetric_sample_loads_and_renders() {
     let dir = support::scratch("cli-real", "render");
@@ -48,6 +58,11 @@ fn every_volumetric_sample_loads_and_renders() {
         let info: Value = serde_json::from_slice(&out.stdout).expect("JSON");
         let tets = info["tets"].as_u64().expect("tets");
         assert!(tets >= min_tets, "{name}: {tets} tetrahedra: {info}");
+        // The cells as the file counts them (NumberOfCells / num_elem),
+        // those left out of the walk included.
+        if let Some(&(_, cells)) = FILE_CELLS.iter().find(|(n, _)| *n == name) {
+            assert_eq!(info["input_cells"], cells, "{name}: {info}");
+        }
 
         let image = dir.join("image.exr");
         let out = run(
@@ -65,11 +80,29 @@ fn every_volumetric_sample_loads_and_renders() {
         );
         let said = format!("{}{}", text(&out.stdout), text(&out.stderr));
         assert!(out.status.success(), "render {name}:\n{said}");
+        // What had to change is one summary line: the can's tangled cells
+        // left out, uGridEx's faces split the other way made boundary.
+        if matches!(name, "can.vtu" | "uGridEx.vtk") {
+            let summary: Vec<&str> = said
+                .lines()
+                .filter(|l| l.starts_with("mesh changed on load: "))
+                .collect();
+            assert_eq!(summary.len(), 1, "{name}:\n{said}");
+            let want = if name == "can.vtu" {
+                "39 cells left out"
+            } else {
+                "non-conforming faces made boundary"
+            };
+            assert!(summary[0].contains(want), "{name}: {}", summary[0]);
+        }
         let pixels = image::open(&image).expect("EXR").into_rgba32f().into_raw();
-        // Something of the volume is in view: at least 2% of the pixels
-        // have some opacity (the smallest sample, uGridEx, covers ~5%).
+        // Something of the volume is in view: at least 1% of the pixels
+        // have some opacity. The smallest in view is tetra.vtu (27 lit):
+        // its one quadratic tetrahedron shares the file with two quadratic
+        // triangles and unused points, which the fit of the bounds frames
+        // too, as ParaView's ResetCamera does.
         let lit = pixels.chunks(4).filter(|p| p[3] > 1e-4).count();
-        assert!(lit >= 32, "{name}: {lit} pixels lit:\n{said}");
+        assert!(lit >= 16, "{name}: {lit} pixels lit:\n{said}");
         eprintln!("{name}: {tets} tetrahedra, {lit} of 1600 pixels lit");
     }
 }

@@ -9,7 +9,9 @@ impl LoadedMesh {
     /// split: what ParaView counts (hexahedra for a PLOT3D grid).
     pub fn input_cells(&self) -> usize {
         let report = &self.report;
-        self.mesh.tets.len() - report.tets_from_split + report.cells_split
+        // Every tetrahedron read, those left out of the walk included.
+        let read = self.mesh.tets.len() + report.excluded.tets + report.excluded.flat_tets;
+        read.saturating_sub(report.tets_from_split) + report.cells_split
     }
 
     /// ParaView's default ScalarOpacityUnitDistance (vtkSMBoundsDomain,
