@@ -122,3 +122,42 @@ fn a_multi_block_file_of_surfaces_is_one_clear_error() {
         assert!(lines[0].contains("surface"), "{stderr}");
     }
 }
+
+/// `--linearize corners` keeps the corner nodes only (VTK's volume mappers'
+/// view of a quadratic cell): one tetrahedron per quadratic tetrahedron
+/// instead of 8.
+#[test]
+fn quadratic_cells_subdivide_or_keep_their_corners() {
+    let dir = support::scratch("cli-real", "linearize");
+    let path = real("QuadraticTetra.vtu");
+    let file = path.to_str().expect("UTF-8");
+    let tets = |extra: &[&str]| {
+        let mut args = vec!["info", "--json", file];
+        args.extend_from_slice(extra);
+        let out = run(&dir, &args);
+        assert!(out.status.success(), "{}", text(&out.stderr));
+        let info: Value = serde_json::from_slice(&out.stdout).expect("JSON");
+        info["tets"].as_u64().expect("tets")
+    };
+    assert_eq!(tets(&[]), 8 * 96);
+    assert_eq!(tets(&["--linearize", "corners"]), 96);
+}
+
+/// Exodus time steps: `info` lists them; a step the file does not store is
+/// one clear error naming the file and how many it has.
+#[test]
+fn exodus_time_steps_are_listed_and_checked() {
+    let dir = support::scratch("cli-real", "time-steps");
+    let path = real("disk_out_ref.ex2");
+    let file = path.to_str().expect("UTF-8");
+    let out = run(&dir, &["info", file]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let said = text(&out.stdout);
+    assert!(said.contains("time steps:      1 (read step 0"), "{said}");
+    let out = run(&dir, &["info", file, "--time-step", "1"]);
+    assert_eq!(out.status.code(), Some(1));
+    let stderr = text(&out.stderr);
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(stderr.contains("disk_out_ref.ex2"), "{stderr}");
+    assert!(stderr.contains("time step 1 is out of range"), "{stderr}");
+}
