@@ -11,8 +11,9 @@ use quick_xml::events::{BytesStart, Event};
 use quick_xml::Reader;
 use rayon::prelude::*;
 
-use super::vtu_xml::find;
-use super::{read_path, vtu_read, ReadOptions, VtkError, VtkRead};
+use super::xml::read as vtu_read;
+use super::xml::tree::find;
+use super::{read_path, ReadOptions, VtkError, VtkRead};
 use tetray_mesh::cells::{assemble_with, CellGrid};
 use tetray_mesh::cells::{classify, type_name, CellKind};
 use tetray_mesh::cells::{drop_ghosts, drop_global_ids, weld};

@@ -9,31 +9,23 @@
 //! into tetrahedra (see there for the conventions). A point or cell array
 //! with several components (SCALARS with numComp > 1, VECTORS,
 //! multi-component FIELD or DataArray) becomes its magnitude there. The
-//! modules, one per format: `legacy_*` (`.vtk`: lexer, unstructured and
-//! structured datasets, writer), `vtu_*` and `xml_structured` (serial XML:
+//! modules, one per format: `legacy` (`.vtk`: tokenizer, unstructured and
+//! structured datasets, writer), `xml` (serial XML:
 //! the XML tree, the one DataArray decoder, `.vtu` and `.vts`/`.vtr`/`.vti`
 //! grids, writers), `collection` (parallel `.pvt*` and multi-block `.vtm`).
 
 mod collection;
 mod error;
-mod legacy_lex;
-mod legacy_read;
-mod legacy_structured;
-mod legacy_write;
+mod legacy;
 mod numeric;
-mod vtu_data;
-mod vtu_read;
-mod vtu_stream;
-mod vtu_write;
-mod vtu_xml;
-mod xml_structured;
+mod xml;
 
 use std::path::Path;
 
 pub use error::VtkError;
-pub use legacy_write::write_legacy;
-pub use vtu_stream::{write_vtu_streamed, TetChunks, VtuIndex, VtuStreamOptions};
-pub use vtu_write::{write_vtu, write_vtu_with, VtuOptions};
+pub use legacy::write::write_legacy;
+pub use xml::stream::{write_vtu_streamed, TetChunks, VtuIndex, VtuStreamOptions};
+pub use xml::write::{write_vtu, write_vtu_with, VtuOptions};
 
 pub use tetray_mesh::cells::{
     CellCounts, Linearize, PieceCounts, ReadOptions, SubdividedCells, VtkRead,
@@ -81,7 +73,7 @@ pub fn read_legacy_bytes_with(
     name: &str,
     opts: &ReadOptions,
 ) -> Result<VtkRead, VtkError> {
-    legacy_read::read_with(bytes, name, opts)
+    legacy::read::read_with(bytes, name, opts)
 }
 
 /// Reads a serial XML file: `.vtu` (UnstructuredGrid), `.vts`
@@ -108,7 +100,7 @@ pub fn read_vtu_bytes_with(
     name: &str,
     opts: &ReadOptions,
 ) -> Result<VtkRead, VtkError> {
-    vtu_read::read_with(bytes, name, opts)
+    xml::read::read_with(bytes, name, opts)
 }
 
 /// Reads a parallel XML file (`.pvtu`, `.pvts`, `.pvtr`, `.pvti`): every

@@ -1,11 +1,12 @@
 //! Serial VTK XML reader: the UnstructuredGrid (`.vtu`) Pieces are decoded
 //! and concatenated into one raw grid; the structured datasets (`.vts`,
-//! `.vtr`, `.vti`) go to `xml_structured`.
+//! `.vtr`, `.vti`) go to `structured.rs`.
 
-use super::numeric::Scalar;
-use super::vtu_data::ArrayDecoder;
-use super::vtu_xml::{self, XmlArray, XmlPiece};
-use super::{xml_structured, ReadOptions, VtkError, VtkRead};
+use super::data::ArrayDecoder;
+use super::structured as xml_structured;
+use super::tree::{self, XmlArray, XmlPiece};
+use crate::vtk::numeric::Scalar;
+use crate::vtk::{ReadOptions, VtkError, VtkRead};
 use tetray_mesh::cells as polyhedron;
 use tetray_mesh::cells::{assemble_with, CellArray, CellGrid};
 use tetray_mesh::cells::{finish_grid, merge_arrays as merge};
@@ -14,14 +15,14 @@ use tetray_mesh::cells::{finish_grid, merge_arrays as merge};
 pub(crate) fn read_with(bytes: &[u8], name: &str, opts: &ReadOptions) -> Result<VtkRead, VtkError> {
     let grid = finish_grid(read_raw(bytes, name)?, name)?;
     if grid.dataset != "UnstructuredGrid" {
-        super::collection::require_volume(&grid, name, "")?;
+        crate::vtk::collection::require_volume(&grid, name, "")?;
     }
     Ok(assemble_with(grid, name, opts)?)
 }
 
 /// The raw grid of a serial VTK XML file of any dataset type read.
 pub(crate) fn read_raw(bytes: &[u8], name: &str) -> Result<CellGrid, VtkError> {
-    let mut doc = vtu_xml::parse(bytes, name)?;
+    let mut doc = tree::parse(bytes, name)?;
     if doc.pieces.is_empty() {
         return Err(VtkError::Invalid {
             file: name.into(),

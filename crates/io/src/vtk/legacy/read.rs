@@ -1,5 +1,5 @@
 //! Legacy `.vtk` reader, ASCII and BINARY (big-endian): UNSTRUCTURED_GRID,
-//! and the structured datasets whose own sections `legacy_structured` reads.
+//! and the structured datasets whose own sections `structured.rs` reads.
 //!
 //! Sections: POINTS; CELLS in the count-prefixed form (`CELLS n size`) and
 //! the VTK 5.1 form (`CELLS noffsets nconn` + OFFSETS + CONNECTIVITY);
@@ -9,10 +9,10 @@
 //! NORMALS, TEXTURE_COORDINATES, TENSORS, COLOR_SCALARS, lookup tables and
 //! id arrays are read past (with a warning where they carry data).
 
-use super::legacy_lex::{decode_name, Cursor};
-use super::legacy_structured::{Kind, Structured};
-use super::numeric::Scalar;
-use super::{ReadOptions, VtkError, VtkRead};
+use super::lex::{decode_name, Cursor};
+use super::structured::{Kind, Structured};
+use crate::vtk::numeric::Scalar;
+use crate::vtk::{ReadOptions, VtkError, VtkRead};
 use tetray_mesh::cells::finish_grid;
 use tetray_mesh::cells::{assemble_with, CellArray, CellGrid};
 
@@ -111,7 +111,7 @@ pub(crate) fn read_with(bytes: &[u8], name: &str, opts: &ReadOptions) -> Result<
     }
     let grid = finish_grid(p.grid, name)?;
     if grid.dataset != "UnstructuredGrid" {
-        super::collection::require_volume(&grid, name, "")?;
+        crate::vtk::collection::require_volume(&grid, name, "")?;
     }
     Ok(assemble_with(grid, name, opts)?)
 }

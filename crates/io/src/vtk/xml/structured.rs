@@ -4,7 +4,7 @@
 //! Each Piece covers its own `Extent` (inclusive point index ranges within
 //! `WholeExtent`); several Pieces are welded on their shared faces.
 
-use super::vtu_data::ArrayDecoder;
+use super::data::ArrayDecoder;
 use tetray_mesh::cells::merge_arrays as merge;
 use tetray_mesh::cells::weld;
 use tetray_mesh::cells::CellGrid;
@@ -12,9 +12,9 @@ use tetray_mesh::cells::{
     add_cells, cell_count, extent_dims, image_points, parse_extent, point_count, rectilinear_points,
 };
 
-use super::vtu_read::{common_global_ids, piece_error, read_arrays, read_points, section};
-use super::vtu_xml::{find, VtuDoc, XmlPiece};
-use super::VtkError;
+use super::read::{common_global_ids, piece_error, read_arrays, read_points, section};
+use super::tree::{find, VtuDoc, XmlPiece};
+use crate::vtk::VtkError;
 
 /// The raw grid of a StructuredGrid, RectilinearGrid or ImageData document.
 pub(crate) fn read_raw(doc: &mut VtuDoc<'_>, file: &str) -> Result<CellGrid, VtkError> {

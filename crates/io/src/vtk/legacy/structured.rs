@@ -10,9 +10,9 @@
 //! Cells come from the dimensions (`structured_grid.rs`); POINT_DATA holds
 //! `nx ny nz` tuples and CELL_DATA one per cell.
 
-use super::legacy_lex::Cursor;
-use super::numeric::Scalar;
-use super::VtkError;
+use super::lex::Cursor;
+use crate::vtk::numeric::Scalar;
+use crate::vtk::VtkError;
 use tetray_mesh::cells::CellGrid;
 use tetray_mesh::cells::{add_cells, cell_count, image_points, point_count, rectilinear_points};
 

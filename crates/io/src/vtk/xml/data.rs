@@ -12,9 +12,9 @@
 
 use std::io::Read;
 
-use super::numeric::{element_f64, element_i64, parse_f64, parse_i64, u64_of, Scalar};
-use super::vtu_xml::{AppendedEncoding, Format, VtuDoc, XmlArray};
-use super::VtkError;
+use super::tree::{AppendedEncoding, Format, VtuDoc, XmlArray};
+use crate::vtk::numeric::{element_f64, element_i64, parse_f64, parse_i64, u64_of, Scalar};
+use crate::vtk::VtkError;
 
 pub(crate) const ZLIB: &str = "vtkZLibDataCompressor";
 

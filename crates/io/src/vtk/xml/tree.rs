@@ -1,7 +1,7 @@
 //! The XML structure of a serial VTK XML file (`.vtu`, `.vts`, `.vtr`,
 //! `.vti`): VTKFile attributes, the dataset element's attributes (extents,
 //! origin, spacing), Pieces and their DataArrays (attributes and text), and
-//! where the appended data starts. Decoding the arrays is `vtu_data`'s job.
+//! where the appended data starts. Decoding the arrays is `data.rs`'s job.
 //!
 //! Appended raw data is not XML, so parsing stops at the start tag of
 //! `<AppendedData>`; its bytes are located by hand from there.
@@ -9,7 +9,7 @@
 use quick_xml::events::{BytesStart, Event};
 use quick_xml::Reader;
 
-use super::VtkError;
+use crate::vtk::VtkError;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Format {

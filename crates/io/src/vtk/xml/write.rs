@@ -8,9 +8,9 @@ use base64::Engine;
 use flate2::write::ZlibEncoder;
 use flate2::Compression;
 
-use super::vtu_data::ZLIB;
-use super::vtu_stream::{write_vtu_streamed, VtuIndex, VtuStreamOptions};
-use super::VtuEncoding;
+use super::data::ZLIB;
+use super::stream::{write_vtu_streamed, VtuIndex, VtuStreamOptions};
+use crate::vtk::VtuEncoding;
 use tetray_mesh::TetMesh;
 
 /// Every knob of the `.vtu` writer. [`VtuOptions::new`] gives what
