@@ -53,7 +53,7 @@ pub use polyhedron::{
     from_face_stream, from_face_tables, parse_face_stream, PieceFaces, PolyhedronFaces,
 };
 pub use structured_grid::{
-    add_cells, cell_count, extent_dims, image_points, parse_extent, point_count, rectilinear_points,
+    add_cells, cell_count, extent_dims, image_points, point_count, rectilinear_points,
 };
 
 use crate::TetMesh;

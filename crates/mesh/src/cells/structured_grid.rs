@@ -19,32 +19,6 @@ const VTK_LINE: i64 = 3;
 const VTK_QUAD: i64 = 9;
 const VTK_HEXAHEDRON: i64 = 12;
 
-/// Parses an extent `x0 x1 y0 y1 z0 z1` (inclusive point index ranges).
-pub fn parse_extent(text: &str, file: &str, section: &str) -> Result<[i64; 6], CellError> {
-    let invalid = |message: String| CellError::Invalid {
-        file: file.into(),
-        section: section.into(),
-        message,
-    };
-    let values: Vec<i64> = text
-        .split_ascii_whitespace()
-        .map(str::parse)
-        .collect::<Result<_, _>>()
-        .map_err(|_| invalid(format!("extent \"{text}\" is not six integers")))?;
-    let extent: [i64; 6] = values
-        .try_into()
-        .map_err(|_| invalid(format!("extent \"{text}\" is not six integers")))?;
-    for axis in 0..3 {
-        if extent[2 * axis + 1] < extent[2 * axis] {
-            return Err(invalid(format!(
-                "extent \"{text}\" ends before it starts along {}",
-                ["x", "y", "z"][axis]
-            )));
-        }
-    }
-    Ok(extent)
-}
-
 /// Points along each axis of an extent.
 pub fn extent_dims(extent: &[i64; 6]) -> [usize; 3] {
     [0, 1, 2].map(|a| (extent[2 * a + 1] - extent[2 * a]) as usize + 1)
@@ -187,21 +161,5 @@ mod tests {
         assert_eq!(&grid.connectivity[..4], &[0, 1, 4, 3]);
         assert_eq!(cell_count([1, 1, 1]), 1);
         assert_eq!(cell_count([4, 1, 1]), 3);
-    }
-
-    #[test]
-    fn extents_and_image_points() {
-        let e = parse_extent(" 1 2 0 0 0 1", "f", "s").unwrap();
-        assert_eq!(extent_dims(&e), [2, 1, 2]);
-        assert!(parse_extent("0 1 0 1 0", "f", "s").is_err());
-        assert!(parse_extent("0 1 2 1 0 1", "f", "s").is_err());
-        let identity = [1., 0., 0., 0., 1., 0., 0., 0., 1.];
-        let p = image_points(&e, [10., 0., 0.], [0.5, 1., 2.], identity);
-        assert_eq!(&p[..6], &[10.5, 0., 0., 11., 0., 0.]);
-        assert_eq!(&p[6..9], &[10.5, 0., 2.]);
-        // A direction swapping x and y.
-        let swap = [0., 1., 0., 1., 0., 0., 0., 0., 1.];
-        let q = image_points(&e, [0.; 3], [1.; 3], swap);
-        assert_eq!(&q[..3], &[0., 1., 0.]);
     }
 }

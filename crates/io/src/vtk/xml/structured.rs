@@ -9,7 +9,7 @@ use tetray_mesh::cells::merge_arrays as merge;
 use tetray_mesh::cells::weld;
 use tetray_mesh::cells::CellGrid;
 use tetray_mesh::cells::{
-    add_cells, cell_count, extent_dims, image_points, parse_extent, point_count, rectilinear_points,
+    add_cells, cell_count, extent_dims, image_points, point_count, rectilinear_points,
 };
 
 use super::read::{common_global_ids, piece_error, read_arrays, read_points, section};
@@ -165,5 +165,52 @@ impl ImageFrame {
             spacing: [spacing[0], spacing[1], spacing[2]],
             direction: std::array::from_fn(|i| direction[i]),
         })
+    }
+}
+
+/// Parses an extent `x0 x1 y0 y1 z0 z1` (inclusive point index ranges).
+fn parse_extent(text: &str, file: &str, section: &str) -> Result<[i64; 6], VtkError> {
+    let invalid = |message: String| VtkError::Invalid {
+        file: file.into(),
+        section: section.into(),
+        message,
+    };
+    let values: Vec<i64> = text
+        .split_ascii_whitespace()
+        .map(str::parse)
+        .collect::<Result<_, _>>()
+        .map_err(|_| invalid(format!("extent \"{text}\" is not six integers")))?;
+    let extent: [i64; 6] = values
+        .try_into()
+        .map_err(|_| invalid(format!("extent \"{text}\" is not six integers")))?;
+    for axis in 0..3 {
+        if extent[2 * axis + 1] < extent[2 * axis] {
+            return Err(invalid(format!(
+                "extent \"{text}\" ends before it starts along {}",
+                ["x", "y", "z"][axis]
+            )));
+        }
+    }
+    Ok(extent)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn extents_and_image_points() {
+        let e = parse_extent(" 1 2 0 0 0 1", "f", "s").unwrap();
+        assert_eq!(extent_dims(&e), [2, 1, 2]);
+        assert!(parse_extent("0 1 0 1 0", "f", "s").is_err());
+        assert!(parse_extent("0 1 2 1 0 1", "f", "s").is_err());
+        let identity = [1., 0., 0., 0., 1., 0., 0., 0., 1.];
+        let p = image_points(&e, [10., 0., 0.], [0.5, 1., 2.], identity);
+        assert_eq!(&p[..6], &[10.5, 0., 0., 11., 0., 0.]);
+        assert_eq!(&p[6..9], &[10.5, 0., 2.]);
+        // A direction swapping x and y.
+        let swap = [0., 1., 0., 1., 0., 0., 0., 0., 1.];
+        let q = image_points(&e, [0.; 3], [1.; 3], swap);
+        assert_eq!(&q[..3], &[0., 1., 0.]);
     }
 }
