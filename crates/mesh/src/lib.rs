@@ -16,9 +16,9 @@
 //! tetrahedra), [`finish`] (a reader's output, [`MeshRead`]), [`prepare`]
 //! (a mesh built in memory). [`finish`] and [`prepare`] leave out
 //! the cells that cannot be walked (tangled, overlapping, flat; reported),
-//! orients the tetrahedra, [`validate`]s the mesh (a broken file is an
+//! orient the tetrahedra, [`validate`] the mesh (a broken file is an
 //! error, never rendered wrong; non-conforming faces are warnings: rays
-//! cross them through the boundary) and builds its [`Topology`]. File
+//! cross them through the boundary) and build its [`Topology`]. File
 //! readers store the points relative to an origin near the mesh
 //! ([`centring_origin`], [`LoadReport::origin`]).
 

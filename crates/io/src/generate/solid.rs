@@ -8,7 +8,7 @@
 //! `((R + rho cos v) cos u, (R + rho cos v) sin u, rho sin v)`. Both angles
 //! wrap around, so the grid is closed in u and v with no seam: with `nu`
 //! and `nv` even, the alternating 5-tetrahedra split
-//! ([`crate::structured`]) matches its diagonals across the wrap too, and
+//! ([`tetray_mesh::structured`]) matches its diagonals across the wrap too, and
 //! the mesh is conforming everywhere. `(u, v, rho)` is right-handed, so
 //! every tetrahedron comes out positively oriented.
 //!

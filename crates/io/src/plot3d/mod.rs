@@ -5,7 +5,7 @@
 //! The layout (byte order, IBLANK, grid count, Fortran records) is decided
 //! from the header and the file size (see `layout.rs`). Every hexahedron is
 //! split into 5 tetrahedra with alternating parity
-//! ([`crate::structured`]), so the mesh is conforming; `split.rs` counts
+//! ([`tetray_mesh::structured`]), so the mesh is conforming; `split.rs` counts
 //! that split without building it ([`plot3d_split_counts`]).
 
 mod grid;
