@@ -12,7 +12,7 @@ const XYZ: &[u8] = include_bytes!("../../data/plot3d/bluntfinxyz.bin");
 const Q: &[u8] = include_bytes!("../../data/plot3d/bluntfinq.bin");
 
 pub fn blunt_fin_mesh() -> LoadedMesh {
-    tetray_mesh::load_plot3d_bytes(XYZ, Some(Q), "Blunt Fin").expect("the embedded dataset loads")
+    tetray_io::load_plot3d_bytes(XYZ, Some(Q), "Blunt Fin").expect("the embedded dataset loads")
 }
 
 pub fn blunt_fin() -> Scene {

@@ -40,7 +40,7 @@ pub struct MeshArgs {
     pub linearize: LinearizeArg,
 }
 
-/// `--linearize`: see [`tetray_mesh::vtk::Linearize`].
+/// `--linearize`: see [`tetray_io::vtk::Linearize`].
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, ValueEnum)]
 pub enum LinearizeArg {
     #[default]
@@ -48,11 +48,11 @@ pub enum LinearizeArg {
     Corners,
 }
 
-impl From<LinearizeArg> for tetray_mesh::vtk::Linearize {
+impl From<LinearizeArg> for tetray_io::vtk::Linearize {
     fn from(arg: LinearizeArg) -> Self {
         match arg {
-            LinearizeArg::Subdivide => tetray_mesh::vtk::Linearize::Subdivide,
-            LinearizeArg::Corners => tetray_mesh::vtk::Linearize::Corners,
+            LinearizeArg::Subdivide => tetray_io::vtk::Linearize::Subdivide,
+            LinearizeArg::Corners => tetray_io::vtk::Linearize::Corners,
         }
     }
 }

@@ -10,10 +10,10 @@ use std::time::Instant;
 use anyhow::{bail, Context};
 use clap::{Args, Subcommand, ValueEnum};
 use serde::Serialize;
-use tetray_mesh::generate::solid::{TorusShell, FIELDS};
-use tetray_mesh::generate::{Refinement, RefinementPlan};
-use tetray_mesh::plot3d::{plot3d_split_counts, read_plot3d_grid_files};
-use tetray_mesh::plot3d_q_sibling;
+use tetray_io::generate::solid::{TorusShell, FIELDS};
+use tetray_io::generate::{Refinement, RefinementPlan};
+use tetray_io::plot3d::{plot3d_split_counts, read_plot3d_grid_files};
+use tetray_io::plot3d_q_sibling;
 
 /// `tetray generate`.
 #[derive(Debug, Clone, Args)]

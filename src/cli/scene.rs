@@ -99,7 +99,7 @@ pub fn load_mesh(args: &MeshArgs) -> anyhow::Result<MeshInput> {
                 bail!("--time-step and --time need an Exodus II file");
             }
             let loaded =
-                tetray_mesh::load_plot3d_bytes(BLUNT_FIN_XYZ, Some(BLUNT_FIN_Q), EMBEDDED_NAME)?;
+                tetray_io::load_plot3d_bytes(BLUNT_FIN_XYZ, Some(BLUNT_FIN_Q), EMBEDDED_NAME)?;
             (EMBEDDED_NAME.to_string(), loaded)
         }
         Some(path) => {
@@ -109,14 +109,14 @@ pub fn load_mesh(args: &MeshArgs) -> anyhow::Result<MeshInput> {
             if let Some(q) = args.q.as_deref().filter(|q| !q.is_file()) {
                 bail!("--q {}: no such file", q.display());
             }
-            let options = tetray_mesh::LoadOptions {
+            let options = tetray_io::LoadOptions {
                 plot3d_q: args.q.clone(),
                 time_step: args.time_step,
                 time: args.time,
                 block: args.block.clone(),
                 linearize: args.linearize.into(),
             };
-            let loaded = tetray_mesh::load(path, &options)?;
+            let loaded = tetray_io::load(path, &options)?;
             let timed = args.time_step.is_some() || args.time.is_some();
             if timed && loaded.report.format != "Exodus II" {
                 bail!(

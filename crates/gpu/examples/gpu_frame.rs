@@ -5,7 +5,7 @@ use std::path::Path;
 use tetray_boundary_bvh::BuildPreset;
 use tetray_gpu::{GpuContext, GpuIntegrator, GpuRaycaster, GpuRenderOptions, GpuScene};
 use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunction};
-use tetray_mesh::{load, LoadOptions};
+use tetray_io::{load, LoadOptions};
 use tetray_raycast::{render_scalar, Camera, RenderOptions, Scene};
 
 fn main() -> anyhow::Result<()> {

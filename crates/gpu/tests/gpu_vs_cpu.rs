@@ -408,7 +408,7 @@ fn plot3d_datasets_match_the_reference() {
     }
     let data = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/plot3d");
     for name in ["bluntfin", "post", "comb"] {
-        let loaded = tetray_mesh::load(&data.join(format!("{name}xyz.bin")), &Default::default())
+        let loaded = tetray_io::load(&data.join(format!("{name}xyz.bin")), &Default::default())
             .expect("dataset");
         let field = if name == "post" {
             "velocity_magnitude"

@@ -1,72 +1,11 @@
 //! The error type of the mesh crate.
 
-use crate::exodus::ExodusError;
-use crate::vtk::VtkError;
-
 /// Everything that makes a mesh unusable. Each variant names what is at
-/// fault: the file, the cell (tetrahedron index), the point, the field.
+/// fault: the cell (tetrahedron index), the point, the field; a mesh read
+/// from a file has its errors wrapped in [`MeshError::InFile`], naming it.
+/// File errors are `tetray-io`'s (`IoError`), which wraps these.
 #[derive(Debug, thiserror::Error)]
 pub enum MeshError {
-    /// A file could not be opened or read.
-    #[error("{file}: {source}")]
-    Io {
-        file: String,
-        #[source]
-        source: std::io::Error,
-    },
-
-    /// The VTK legacy or XML reader failed.
-    #[error(transparent)]
-    Vtk(#[from] VtkError),
-
-    /// The Exodus II reader failed.
-    #[error(transparent)]
-    Exodus(#[from] ExodusError),
-
-    /// The file name does not say which reader to use.
-    #[error(
-        "{file}: unknown mesh format: expected .vtk, .vtu, .vts, .vtr, .vti, .pvtu, \
-         .pvts, .pvtr, .pvti, .vtm, an Exodus II file (.e, .exo, .ex2, .g, .gen) or a \
-         PLOT3D grid (name ending in xyz.bin, .xyz or .x)"
-    )]
-    UnknownFormat { file: String },
-
-    /// A PLOT3D header that fits no layout this reader knows.
-    #[error("{file}: PLOT3D {what} file: {message}")]
-    Plot3dHeader {
-        file: String,
-        /// "grid" or "solution".
-        what: &'static str,
-        message: String,
-    },
-
-    /// A PLOT3D file shorter than its header says it must be.
-    #[error(
-        "{file}: PLOT3D {what} file is too short: a {ni} x {nj} x {nk} grid needs \
-         {expected} bytes ({layout}), the file has {found}"
-    )]
-    Plot3dTruncated {
-        file: String,
-        what: &'static str,
-        ni: usize,
-        nj: usize,
-        nk: usize,
-        layout: String,
-        expected: usize,
-        found: usize,
-    },
-
-    /// The solution (q) file is for another grid.
-    #[error(
-        "{q_file}: PLOT3D solution is {q_dims:?} points, but the grid {xyz_file} is {xyz_dims:?}"
-    )]
-    Plot3dDimsMismatch {
-        xyz_file: String,
-        q_file: String,
-        xyz_dims: [usize; 3],
-        q_dims: [usize; 3],
-    },
-
     /// No tetrahedra at all.
     #[error("the mesh has no tetrahedra")]
     Empty,
@@ -179,17 +118,10 @@ pub enum MeshError {
 
 impl MeshError {
     /// Wraps an error found after reading `file`, so the message names it;
-    /// errors that already name their file are left as they are.
-    pub(crate) fn in_file(self, file: &str) -> MeshError {
+    /// an error that already names its file is left as it is.
+    pub fn in_file(self, file: &str) -> MeshError {
         match self {
-            MeshError::Io { .. }
-            | MeshError::Vtk(_)
-            | MeshError::Exodus(_)
-            | MeshError::UnknownFormat { .. }
-            | MeshError::Plot3dHeader { .. }
-            | MeshError::Plot3dTruncated { .. }
-            | MeshError::Plot3dDimsMismatch { .. }
-            | MeshError::InFile { .. } => self,
+            MeshError::InFile { .. } => self,
             other => MeshError::InFile {
                 file: file.to_string(),
                 source: Box::new(other),

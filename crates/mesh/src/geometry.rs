@@ -43,7 +43,7 @@ pub fn centring_origin(lo: DVec3, hi: DVec3) -> DVec3 {
 
 /// Bounds in f64 of points given as `x, y, z` triples; `None` when there
 /// are none.
-pub(crate) fn bounds_f64(points: impl Iterator<Item = DVec3>) -> Option<(DVec3, DVec3)> {
+pub fn bounds_f64(points: impl Iterator<Item = DVec3>) -> Option<(DVec3, DVec3)> {
     points.fold(None, |acc, p| match acc {
         None => Some((p, p)),
         Some((lo, hi)) => Some((lo.min(p), hi.max(p))),

@@ -4,7 +4,7 @@ use std::fmt;
 
 use glam::{DVec3, Vec3};
 
-use crate::vtk::PieceCounts;
+use crate::cells::PieceCounts;
 use crate::{BoundaryFace, ElementBlock, ExcludedCells, LoadedMesh};
 
 /// Range of one scalar field.

@@ -1,7 +1,9 @@
 //! Tetrahedral meshes for volume rendering: points, tetrahedra, point scalar
-//! fields; readers for VTK legacy, VTK XML (.vtu), PLOT3D and Exodus II; the
-//! face-neighbour graph and boundary faces; validation; large generated
-//! test meshes ([`generate`]).
+//! fields; the cell model every reader produces ([`cells`]: VTK cell types,
+//! f64 points, point and cell arrays, pieces) and its splitting into
+//! tetrahedra; the face-neighbour graph and boundary faces; validation.
+//! The file readers and writers are in `tetray-io`; nothing here reads a
+//! file.
 //!
 //! Conventions shared by every crate of the workspace:
 //! - every tetrahedron is stored positively oriented:
@@ -10,12 +12,13 @@
 //!   the vertex order [`FACE_VERTICES`]`[f]`, counter-clockwise seen from
 //!   outside (its normal by the right-hand rule points out of the tetrahedron).
 //!
-//! Entry points: [`load`] (a file, by name), [`load_plot3d_bytes`] (an
-//! embedded grid), [`prepare`] (a mesh built in memory). Each leaves out
+//! Entry points: [`cells::assemble_with`] (a reader's cells to
+//! tetrahedra), [`finish`] (a reader's output, [`MeshRead`]), [`prepare`]
+//! (a mesh built in memory). [`finish`] and [`prepare`] leave out
 //! the cells that cannot be walked (tangled, overlapping, flat; reported),
-//! orients the tetrahedra, [`validate`]s the mesh (a broken file is an
+//! orient the tetrahedra, [`validate`] the mesh (a broken file is an
 //! error, never rendered wrong; non-conforming faces are warnings: rays
-//! cross them through the boundary) and builds its [`Topology`]. File
+//! cross them through the boundary) and build its [`Topology`]. File
 //! readers store the points relative to an origin near the mesh
 //! ([`centring_origin`], [`LoadReport::origin`]).
 
@@ -24,29 +27,22 @@ mod error;
 mod exclude;
 mod geometry;
 mod info;
-mod load;
+mod loaded;
 mod scale;
 mod seams;
 mod topology;
 mod validate;
 
-pub mod exodus;
-pub mod generate;
-pub mod plot3d;
+pub mod cells;
 pub mod structured;
 
 pub use error::MeshError;
 pub use exclude::ExcludedCells;
-pub use exodus::{
-    read_exodus_bytes, read_exodus_file, ElementBlock, ExodusError, ExodusOptions, ExodusRead,
-};
-pub use geometry::{centring_origin, tet_shape, TetShape, DEGENERATE_HEIGHT_ULPS};
+pub use geometry::{bounds_f64, centring_origin, tet_shape, TetShape, DEGENERATE_HEIGHT_ULPS};
 pub use info::{FieldRange, MeshSummary};
-pub use load::{
-    load, load_plot3d_bytes, plot3d_q_sibling, prepare, LoadOptions, LoadReport, LoadedMesh,
-};
-pub use plot3d::{read_plot3d_bytes, read_plot3d_files, Plot3dRead};
+pub use loaded::{finish, prepare, ElementBlock, LoadReport, LoadedMesh, MeshRead};
 pub use scale::{default_field, mean_tet_chord, value_range};
+pub use topology::MAX_TETS;
 pub use validate::{validate, validate_with_topology, ValidationReport};
 
 use glam::Vec3;
@@ -97,5 +93,3 @@ pub struct Topology {
     /// `t` is on the boundary, else `u32::MAX`.
     pub boundary_index: Vec<[u32; 4]>,
 }
-
-pub mod vtk;

@@ -11,12 +11,12 @@ use rayon::prelude::*;
 
 /// Local corner offsets `(di, dj, dk)` of a hexahedron's tetrahedra:
 /// `[parity][tet][corner]`.
-pub(crate) type Templates = [[[[u32; 3]; 4]; 5]; 2];
+pub type Templates = [[[[u32; 3]; 4]; 5]; 2];
 
 /// Local corner offsets `(di, dj, dk)` of a hexahedron's tetrahedra, one set
 /// per parity of `i + j + k`, each tetrahedron positively oriented when the
 /// grid axes i, j, k are right-handed.
-pub(crate) fn templates() -> Templates {
+pub fn templates() -> Templates {
     let even = [
         [[0, 0, 0], [1, 1, 0], [1, 0, 1], [0, 1, 1]],
         [[1, 0, 0], [0, 0, 0], [1, 1, 0], [1, 0, 1]],
@@ -74,7 +74,7 @@ pub fn structured_tets(dims: [usize; 3], diagonal_parity: usize) -> Vec<[u32; 4]
 
 /// The 5 tetrahedra of hexahedron `h` (numbered like the points, i
 /// fastest) of an `ni x nj x nk` point grid, as in [`structured_tets`].
-pub(crate) fn hex_tets(
+pub fn hex_tets(
     templates: &Templates,
     dims: [usize; 3],
     h: usize,

@@ -12,7 +12,7 @@ use crate::{BoundaryFace, MeshError, TetMesh, Topology, FACE_VERTICES, NO_NEIGHB
 
 /// Largest number of tetrahedra: `4 * tet + face` must fit in 32 bits, and
 /// `u32::MAX` is [`NO_NEIGHBOR`].
-pub(crate) const MAX_TETS: usize = (u32::MAX / 4) as usize;
+pub const MAX_TETS: usize = (u32::MAX / 4) as usize;
 
 /// Sort key of local face `f` of `tet`: sorted point indices, then the
 /// face's id `4 * tet + f` in the low 32 bits.

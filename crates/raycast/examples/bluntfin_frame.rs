@@ -9,7 +9,7 @@ use tetray_integrate::{
     IntegratorOptions, KernelVisitor, Method, ScalarIntegrator, SegmentKernel, TransferFunction,
     Typed,
 };
-use tetray_mesh::{load, LoadOptions};
+use tetray_io::{load, LoadOptions};
 use tetray_raycast::{render_cpu, Camera, RenderOptions, Scene, SegmentIntegrator};
 
 struct Absorb {

@@ -148,7 +148,7 @@ impl Scene {
         })
     }
 
-    /// [`Scene::new`] on a mesh loaded by `tetray_mesh::load` / `prepare`
+    /// [`Scene::new`] on a mesh loaded by `tetray_io::load` / `prepare`
     /// (its load report is dropped; keep it beforehand if needed).
     pub fn from_loaded(
         loaded: LoadedMesh,

@@ -24,7 +24,8 @@ use support::compare::{assert_matches, expected_image, views, Expected, Worst};
 use support::optics::{beer_lambert, transfer_function};
 use tetray_boundary_bvh::BuildPreset;
 use tetray_integrate::{IntegratorOptions, Method, OpacityMode, ScalarIntegrator};
-use tetray_mesh::{load, LoadOptions, LoadedMesh, MeshSummary};
+use tetray_io::{load, LoadOptions};
+use tetray_mesh::{LoadedMesh, MeshSummary};
 use tetray_raycast::scenes::{jittered_box, CellSplit, ScalarSpec};
 use tetray_raycast::{relative_to_origin, render_scalar, Camera, Image, RenderOptions, Scene};
 

@@ -22,7 +22,7 @@ use support::optics::transfer_function;
 use tetray_boundary_bvh::watertight::RayFrame;
 use tetray_boundary_bvh::BuildPreset;
 use tetray_integrate::{reference, IntegratorOptions, Method, OpacityMode, ScalarIntegrator};
-use tetray_mesh::vtk::{read_legacy_bytes_with, Linearize, ReadOptions};
+use tetray_io::vtk::{read_legacy_bytes_with, Linearize, ReadOptions};
 use tetray_raycast::{render_scalar, Image, RenderOptions, Scene};
 
 /// Cubes per side of the unit box; each cut into 6 quadratic tetrahedra.

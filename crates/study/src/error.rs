@@ -27,6 +27,8 @@ pub enum StudyError {
     #[error(transparent)]
     Mesh(#[from] tetray_mesh::MeshError),
     #[error(transparent)]
+    Load(#[from] tetray_io::IoError),
+    #[error(transparent)]
     Scene(#[from] tetray_raycast::SceneError),
     #[error(transparent)]
     Render(#[from] tetray_raycast::RenderError),

@@ -44,7 +44,7 @@ fn until_idle(harness: &mut Harness<'_, ViewerApp>) -> Vec<Duration> {
 }
 
 fn main() -> anyhow::Result<()> {
-    let loaded = tetray_mesh::load_plot3d_bytes(XYZ, Some(Q), "embedded Blunt Fin")?;
+    let loaded = tetray_io::load_plot3d_bytes(XYZ, Some(Q), "embedded Blunt Fin")?;
     let dataset = Dataset::from_loaded("embedded Blunt Fin", loaded);
     let mut options = ViewerOptions::default();
     if let Some(ms) = std::env::args().nth(1) {

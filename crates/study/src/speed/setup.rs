@@ -9,7 +9,8 @@ use std::time::Instant;
 use glam::Vec3;
 use tetray_boundary_bvh::BuildPreset;
 use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunction};
-use tetray_mesh::{mean_tet_chord, LoadOptions, ScalarField, TetMesh, Topology};
+use tetray_io::LoadOptions;
+use tetray_mesh::{mean_tet_chord, ScalarField, TetMesh, Topology};
 use tetray_raycast::scenes::{box_grid, CellSplit};
 use tetray_raycast::{Camera, Scene};
 
@@ -72,7 +73,7 @@ pub fn load_dataset(
 ) -> Result<Prepared, StudyError> {
     let path: PathBuf = dir.join(dataset.grid);
     let start = Instant::now();
-    let loaded = tetray_mesh::load(&path, &LoadOptions::default())?;
+    let loaded = tetray_io::load(&path, &LoadOptions::default())?;
     let load_s = start.elapsed().as_secs_f64();
     let unit_distance = loaded.paraview_unit_distance();
     prepare(

@@ -15,7 +15,7 @@ const BLUNT_FIN_Q: &[u8] = include_bytes!("../../../../data/plot3d/bluntfinq.bin
 /// The default dataset, as `tetray view` loads it with no mesh.
 pub fn blunt_fin() -> Dataset {
     let loaded =
-        tetray_mesh::load_plot3d_bytes(BLUNT_FIN_XYZ, Some(BLUNT_FIN_Q), "embedded Blunt Fin")
+        tetray_io::load_plot3d_bytes(BLUNT_FIN_XYZ, Some(BLUNT_FIN_Q), "embedded Blunt Fin")
             .expect("the embedded dataset loads");
     Dataset::from_loaded("embedded Blunt Fin", loaded)
 }

@@ -1,0 +1,89 @@
+//! The error of the readers and writers: the file at fault, and what is
+//! wrong with it. Errors of the mesh a file holds (validation) are
+//! [`MeshError`]s, wrapped so their message names the file.
+
+use tetray_mesh::MeshError;
+
+use crate::exodus::ExodusError;
+use crate::vtk::VtkError;
+
+/// Everything that can go wrong loading a mesh from a file. Each variant
+/// names the file.
+#[derive(Debug, thiserror::Error)]
+pub enum IoError {
+    /// A file could not be opened or read.
+    #[error("{file}: {source}")]
+    Io {
+        file: String,
+        #[source]
+        source: std::io::Error,
+    },
+
+    /// The VTK legacy or XML reader failed.
+    #[error(transparent)]
+    Vtk(#[from] VtkError),
+
+    /// The Exodus II reader failed.
+    #[error(transparent)]
+    Exodus(#[from] ExodusError),
+
+    /// The file name does not say which reader to use.
+    #[error(
+        "{file}: unknown mesh format: expected .vtk, .vtu, .vts, .vtr, .vti, .pvtu, \
+         .pvts, .pvtr, .pvti, .vtm, an Exodus II file (.e, .exo, .ex2, .g, .gen) or a \
+         PLOT3D grid (name ending in xyz.bin, .xyz or .x)"
+    )]
+    UnknownFormat { file: String },
+
+    /// A PLOT3D header that fits no layout this reader knows.
+    #[error("{file}: PLOT3D {what} file: {message}")]
+    Plot3dHeader {
+        file: String,
+        /// "grid" or "solution".
+        what: &'static str,
+        message: String,
+    },
+
+    /// A PLOT3D file shorter than its header says it must be.
+    #[error(
+        "{file}: PLOT3D {what} file is too short: a {ni} x {nj} x {nk} grid needs \
+         {expected} bytes ({layout}), the file has {found}"
+    )]
+    Plot3dTruncated {
+        file: String,
+        what: &'static str,
+        ni: usize,
+        nj: usize,
+        nk: usize,
+        layout: String,
+        expected: usize,
+        found: usize,
+    },
+
+    /// The solution (q) file is for another grid.
+    #[error(
+        "{q_file}: PLOT3D solution is {q_dims:?} points, but the grid {xyz_file} is {xyz_dims:?}"
+    )]
+    Plot3dDimsMismatch {
+        xyz_file: String,
+        q_file: String,
+        xyz_dims: [usize; 3],
+        q_dims: [usize; 3],
+    },
+
+    /// The mesh read is unusable (validation); wrapped in
+    /// [`MeshError::InFile`] when it came from a file.
+    #[error(transparent)]
+    Mesh(#[from] MeshError),
+}
+
+impl IoError {
+    /// The mesh error at the root of this one (without the file wrapper of
+    /// [`MeshError::InFile`]), when it is one.
+    pub fn mesh_root(&self) -> Option<&MeshError> {
+        match self {
+            IoError::Mesh(e) => Some(e.root()),
+            _ => None,
+        }
+    }
+}

@@ -1,0 +1,32 @@
+//! Mesh files: one module per format, each turning bytes into the cell
+//! model of `tetray-mesh` ([`tetray_mesh::cells::CellGrid`]: points in f64,
+//! cells with their VTK type, fields, pieces and blocks) and through its
+//! one assembly step into tetrahedra; and [`load`], which picks the reader
+//! by the file's name and finishes the mesh ([`tetray_mesh::finish`]:
+//! orient, validate, topology), returning a [`LoadedMesh`].
+//!
+//! - [`vtk`]: legacy `.vtk`, serial XML (`.vtu`, `.vts`, `.vtr`, `.vti`,
+//!   one DataArray decoder), parallel XML (`.pvt*`) and multi-block `.vtm`;
+//!   writers for `.vtu` (whole or streamed) and legacy `.vtk`;
+//! - [`exodus`]: Exodus II (netCDF);
+//! - [`plot3d`]: PLOT3D grids and solutions, read and written;
+//! - [`generate`]: large test meshes written as files (refined PLOT3D
+//!   grids, a torus shell as `.vtu`).
+//!
+//! A format module knows nothing of topology; `tetray-mesh` knows nothing
+//! of files.
+
+mod error;
+mod load;
+
+pub mod exodus;
+pub mod generate;
+pub mod plot3d;
+pub mod vtk;
+
+pub use error::IoError;
+pub use exodus::{read_exodus_bytes, read_exodus_file, ExodusError, ExodusOptions, ExodusRead};
+pub use load::{load, load_plot3d_bytes, plot3d_q_sibling, LoadOptions};
+pub use plot3d::{read_plot3d_bytes, read_plot3d_files, Plot3dRead};
+pub use tetray_mesh::{ElementBlock, LoadReport, LoadedMesh};
+pub use vtk::VtkError;

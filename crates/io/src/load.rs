@@ -1,0 +1,273 @@
+//! Loading a mesh from a file, ready to render: the reader chosen by the
+//! file's name (one module per format), then [`tetray_mesh::finish`]
+//! (leave out the cells that cannot be walked, orient, validate, build the
+//! topology). What was changed is in the [`tetray_mesh::LoadReport`].
+
+use std::path::{Path, PathBuf};
+
+use glam::DVec3;
+use tetray_mesh::cells::CellCounts;
+use tetray_mesh::{finish, LoadedMesh, MeshRead};
+
+use crate::exodus::{read_exodus_file, ExodusOptions, ExodusRead};
+use crate::plot3d::{read_plot3d_bytes, read_plot3d_files, Plot3dRead};
+use crate::{vtk, IoError};
+
+/// Options of [`load`].
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct LoadOptions {
+    /// The PLOT3D solution file; by default the grid file's sibling with
+    /// `xyz` replaced by `q` (`postxyz.bin` -> `postq.bin`, `a.xyz` or
+    /// `a.x` -> `a.q`), used when it exists.
+    pub plot3d_q: Option<PathBuf>,
+    /// Exodus II: the 0-based time step to read (default: the first).
+    pub time_step: Option<usize>,
+    /// Exodus II: read the time step whose stored time is nearest this
+    /// (not together with `time_step`).
+    pub time: Option<f64>,
+    /// For a multi-block `.vtm`: keep only the block of this name (or
+    /// path `outer/inner`, by the blocks' `name` attributes).
+    pub block: Option<String>,
+    /// Quadratic and Lagrange cells: subdivided through all their nodes
+    /// (default) or reduced to their corners.
+    pub linearize: vtk::Linearize,
+}
+
+/// The file formats [`load`] recognises by name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Format {
+    Legacy,
+    /// Serial XML: `.vtu`, `.vts`, `.vtr`, `.vti`.
+    Xml,
+    /// `.pvtu`, `.pvts`, `.pvtr`, `.pvti`.
+    Parallel,
+    MultiBlock,
+    Plot3d,
+    Exodus,
+}
+
+fn format_of(path: &Path) -> Option<Format> {
+    let name = path.file_name()?.to_string_lossy().to_lowercase();
+    let ext = name.rsplit_once('.').map_or("", |(_, e)| e);
+    if ext == "vtk" {
+        Some(Format::Legacy)
+    } else if ["vtu", "vts", "vtr", "vti"].contains(&ext) {
+        Some(Format::Xml)
+    } else if ["pvtu", "pvts", "pvtr", "pvti"].contains(&ext) {
+        Some(Format::Parallel)
+    } else if ext == "vtm" {
+        Some(Format::MultiBlock)
+    } else if ["e", "exo", "ex2", "g", "gen"].contains(&ext) {
+        Some(Format::Exodus)
+    } else if name.ends_with("xyz.bin") || name.ends_with(".xyz") || name.ends_with(".x") {
+        Some(Format::Plot3d)
+    } else {
+        None
+    }
+}
+
+/// The default solution file of a PLOT3D grid: the last `xyz` of the file
+/// name (any case) replaced by `q`, or a final `.x` by `.q`.
+pub fn plot3d_q_sibling(xyz: &Path) -> Option<PathBuf> {
+    let name = xyz.file_name()?.to_string_lossy().into_owned();
+    let lower = name.to_lowercase();
+    let q_name = if let Some(at) = lower.rfind("xyz") {
+        format!("{}q{}", &name[..at], &name[at + 3..])
+    } else if lower.ends_with(".x") {
+        format!("{}q", &name[..name.len() - 1])
+    } else {
+        return None;
+    };
+    Some(xyz.with_file_name(q_name))
+}
+
+/// Reads the mesh at `path` (chosen by name, any case: `.vtk` (any dataset
+/// type its DATASET line names), `.vtu`, `.vts`, `.vtr`, `.vti`, their
+/// parallel forms `.pvt*`, multi-block `.vtm`, an Exodus II file `.e`,
+/// `.exo`, `.ex2`, `.g`, `.gen`, or a PLOT3D grid `*xyz.bin`, `*.xyz`,
+/// `*.x`), then orients, validates and builds the topology (see
+/// [`tetray_mesh::prepare`]).
+///
+/// # Errors
+/// [`IoError::UnknownFormat`] for an unrecognised name, the reader's
+/// errors, and validation errors wrapped in [`tetray_mesh::MeshError::InFile`].
+pub fn load(path: &Path, opts: &LoadOptions) -> Result<LoadedMesh, IoError> {
+    let file = path.display().to_string();
+    let format = format_of(path).ok_or_else(|| IoError::UnknownFormat { file: file.clone() })?;
+    let vtk_opts = vtk::ReadOptions {
+        linearize: opts.linearize,
+    };
+    let read = match format {
+        Format::Legacy => {
+            let read = vtk::read_legacy_file_with(path, &vtk_opts)?;
+            let format = match read.dataset {
+                "StructuredGrid" => "VTK legacy STRUCTURED_GRID",
+                "RectilinearGrid" => "VTK legacy RECTILINEAR_GRID",
+                "ImageData" => "VTK legacy STRUCTURED_POINTS",
+                _ => "VTK legacy",
+            };
+            from_vtk(read, format)
+        }
+        Format::Xml => {
+            let read = vtk::read_vtu_file_with(path, &vtk_opts)?;
+            let format = match read.dataset {
+                "StructuredGrid" => "VTK XML StructuredGrid",
+                "RectilinearGrid" => "VTK XML RectilinearGrid",
+                "ImageData" => "VTK XML ImageData",
+                _ => "VTK XML",
+            };
+            from_vtk(read, format)
+        }
+        Format::Parallel => from_vtk(
+            vtk::read_parallel_file_with(path, &vtk_opts)?,
+            "VTK parallel XML",
+        ),
+        Format::MultiBlock => from_vtk(
+            vtk::read_multiblock_file_with(path, opts.block.as_deref(), &vtk_opts)?,
+            "VTK multi-block",
+        ),
+        Format::Exodus => {
+            let exodus = ExodusOptions {
+                time_step: opts.time_step,
+                time: opts.time,
+                linearize: opts.linearize,
+            };
+            from_exodus(read_exodus_file(path, &exodus)?)
+        }
+        Format::Plot3d => {
+            let mut warnings = Vec::new();
+            let q = match &opts.plot3d_q {
+                Some(q) => Some(q.clone()),
+                None => match plot3d_q_sibling(path) {
+                    Some(q) if q.is_file() => Some(q),
+                    other => {
+                        let looked = other
+                            .map_or_else(String::new, |q| format!(" ({} not found)", q.display()));
+                        warnings.push(format!(
+                            "no PLOT3D solution file{looked}: the mesh has no scalar fields"
+                        ));
+                        None
+                    }
+                },
+            };
+            let mut read = from_plot3d(read_plot3d_files(path, q.as_deref())?);
+            warnings.append(&mut read.warnings);
+            read.warnings = warnings;
+            read
+        }
+    };
+    Ok(finish(read).map_err(|e| e.in_file(&file))?)
+}
+
+/// Loads a PLOT3D grid and optional solution held in memory (`name` is
+/// used in messages), like [`load`] does a file.
+///
+/// # Errors
+/// As [`crate::read_plot3d_bytes`], and validation errors wrapped in
+/// [`tetray_mesh::MeshError::InFile`].
+pub fn load_plot3d_bytes(xyz: &[u8], q: Option<&[u8]>, name: &str) -> Result<LoadedMesh, IoError> {
+    Ok(finish(from_plot3d(read_plot3d_bytes(xyz, q, name)?)).map_err(|e| e.in_file(name))?)
+}
+
+fn from_vtk(read: vtk::VtkRead, format: &'static str) -> MeshRead {
+    let c = read.cells;
+    MeshRead {
+        mesh: read.mesh,
+        format,
+        warnings: read.warnings,
+        cells_split: cells_split(&c),
+        tets_from_split: c.tets_from_split,
+        points_added: c.points_added,
+        subdivided: c.subdivided,
+        pieces: read.pieces,
+        origin: read.origin,
+        tet_cells: read.tet_cells,
+        ..MeshRead::default()
+    }
+}
+
+/// The cells split or subdivided into tetrahedra: every volume cell but
+/// the linear tetrahedra.
+fn cells_split(c: &CellCounts) -> usize {
+    c.hexahedra
+        + c.wedges
+        + c.pyramids
+        + c.voxels
+        + c.subdivided.iter().map(|s| s.cells).sum::<usize>()
+}
+
+fn from_exodus(read: ExodusRead) -> MeshRead {
+    let c = read.cells;
+    MeshRead {
+        mesh: read.mesh,
+        format: "Exodus II",
+        warnings: read.warnings,
+        cells_split: cells_split(&c),
+        tets_from_split: c.tets_from_split,
+        points_added: c.points_added,
+        subdivided: c.subdivided,
+        times: read.times,
+        time_step: read.time_step,
+        blocks: read.blocks,
+        origin: read.origin,
+        tet_cells: read.tet_cells,
+        ..MeshRead::default()
+    }
+}
+
+/// PLOT3D grids are read in f32 (most are single precision); they are
+/// centred like the others, the subtraction done in f64.
+fn from_plot3d(read: Plot3dRead) -> MeshRead {
+    let hexahedra = read.hexahedra - read.blanked_hexahedra;
+    let mut mesh = read.mesh;
+    let origin = tetray_mesh::bounds_f64(mesh.points.iter().map(|p| p.as_dvec3()))
+        .map_or(DVec3::ZERO, |(lo, hi)| tetray_mesh::centring_origin(lo, hi));
+    if origin != DVec3::ZERO {
+        for p in &mut mesh.points {
+            *p = (p.as_dvec3() - origin).as_vec3();
+        }
+    }
+    MeshRead {
+        tets_from_split: mesh.tets.len(),
+        mesh,
+        origin,
+        tet_cells: Vec::new(),
+        format: "PLOT3D",
+        warnings: read.warnings,
+        degenerate_dropped: read.degenerate_dropped,
+        inverted_fixed: read.reoriented,
+        cells_split: hexahedra,
+        ..MeshRead::default()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn formats_and_q_siblings() {
+        let p = Path::new;
+        assert_eq!(format_of(p("a/b.VTK")), Some(Format::Legacy));
+        assert_eq!(format_of(p("b.vtu")), Some(Format::Xml));
+        assert_eq!(format_of(p("b.VTI")), Some(Format::Xml));
+        assert_eq!(format_of(p("d/b.pvtu")), Some(Format::Parallel));
+        assert_eq!(format_of(p("b.vtm")), Some(Format::MultiBlock));
+        assert_eq!(format_of(p("postxyz.bin")), Some(Format::Plot3d));
+        assert_eq!(format_of(p("grid.x")), Some(Format::Plot3d));
+        assert_eq!(format_of(p("grid.obj")), None);
+        for name in ["a.e", "a.EXO", "disk_out_ref.ex2", "mesh.g", "mesh.Gen"] {
+            assert_eq!(format_of(p(name)), Some(Format::Exodus), "{name}");
+        }
+        assert_eq!(format_of(p("a.e-s")), None);
+        assert_eq!(
+            plot3d_q_sibling(p("d/postxyz.bin")),
+            Some(PathBuf::from("d/postq.bin"))
+        );
+        assert_eq!(
+            plot3d_q_sibling(p("d/Wing.XYZ")),
+            Some(PathBuf::from("d/Wing.q"))
+        );
+        assert_eq!(plot3d_q_sibling(p("grid.x")), Some(PathBuf::from("grid.q")));
+    }
+}

@@ -1,0 +1,133 @@
+//! VTK readers and writers: legacy `.vtk` (UNSTRUCTURED_GRID,
+//! STRUCTURED_GRID, RECTILINEAR_GRID, STRUCTURED_POINTS), serial XML
+//! (`.vtu`, `.vts`, `.vtr`, `.vti`), parallel XML (`.pvtu`, `.pvts`,
+//! `.pvtr`, `.pvti`) and multi-block `.vtm`.
+//!
+//! Each reader parses its file into a [`tetray_mesh::cells::CellGrid`]
+//! (points in f64, cells with their VTK type, point and cell arrays,
+//! pieces and ghost cells); [`tetray_mesh::cells::assemble_with`] turns it
+//! into tetrahedra (see there for the conventions). A point or cell array
+//! with several components (SCALARS with numComp > 1, VECTORS,
+//! multi-component FIELD or DataArray) becomes its magnitude there. The
+//! modules, one per format: `legacy` (`.vtk`: tokenizer, unstructured and
+//! structured datasets, writer), `xml` (serial XML:
+//! the XML tree, the one DataArray decoder, `.vtu` and `.vts`/`.vtr`/`.vti`
+//! grids, writers), `collection` (parallel `.pvt*` and multi-block `.vtm`).
+
+mod collection;
+mod error;
+mod legacy;
+mod numeric;
+mod xml;
+
+use std::path::Path;
+
+pub use error::VtkError;
+pub use legacy::write::write_legacy;
+pub use xml::stream::{write_vtu_streamed, TetChunks, VtuIndex, VtuStreamOptions};
+pub use xml::write::{write_vtu, write_vtu_with, VtuOptions};
+
+pub use tetray_mesh::cells::{
+    CellCounts, Linearize, PieceCounts, ReadOptions, SubdividedCells, VtkRead,
+};
+
+/// How [`write_vtu`] stores its arrays.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum VtuEncoding {
+    /// Decimal text inside each DataArray (never compressed).
+    Ascii,
+    /// Base64 inside each DataArray (`format="binary"`).
+    Base64,
+    /// Raw bytes in an `<AppendedData encoding="raw">` section.
+    AppendedRaw,
+    /// Base64 in an `<AppendedData encoding="base64">` section.
+    AppendedBase64,
+}
+
+fn read_path(path: &Path) -> Result<Vec<u8>, VtkError> {
+    std::fs::read(path).map_err(|source| VtkError::Io {
+        file: path.display().to_string(),
+        source,
+    })
+}
+
+/// Reads a legacy `.vtk` file (UNSTRUCTURED_GRID, STRUCTURED_GRID,
+/// RECTILINEAR_GRID or STRUCTURED_POINTS; ASCII or BINARY).
+pub fn read_legacy_file(path: &Path) -> Result<VtkRead, VtkError> {
+    read_legacy_file_with(path, &ReadOptions::default())
+}
+
+/// [`read_legacy_file`] with options.
+pub fn read_legacy_file_with(path: &Path, opts: &ReadOptions) -> Result<VtkRead, VtkError> {
+    read_legacy_bytes_with(&read_path(path)?, &path.display().to_string(), opts)
+}
+
+/// Reads a legacy VTK file held in memory; `name` is used in messages.
+pub fn read_legacy_bytes(bytes: &[u8], name: &str) -> Result<VtkRead, VtkError> {
+    read_legacy_bytes_with(bytes, name, &ReadOptions::default())
+}
+
+/// [`read_legacy_bytes`] with options.
+pub fn read_legacy_bytes_with(
+    bytes: &[u8],
+    name: &str,
+    opts: &ReadOptions,
+) -> Result<VtkRead, VtkError> {
+    legacy::read::read_with(bytes, name, opts)
+}
+
+/// Reads a serial XML file: `.vtu` (UnstructuredGrid), `.vts`
+/// (StructuredGrid), `.vtr` (RectilinearGrid) or `.vti` (ImageData), chosen
+/// by its `<VTKFile type>`; ascii, base64 or appended data, optionally
+/// zlib-compressed.
+pub fn read_vtu_file(path: &Path) -> Result<VtkRead, VtkError> {
+    read_vtu_file_with(path, &ReadOptions::default())
+}
+
+/// [`read_vtu_file`] with options.
+pub fn read_vtu_file_with(path: &Path, opts: &ReadOptions) -> Result<VtkRead, VtkError> {
+    read_vtu_bytes_with(&read_path(path)?, &path.display().to_string(), opts)
+}
+
+/// Reads a serial XML file held in memory; `name` is used in messages.
+pub fn read_vtu_bytes(bytes: &[u8], name: &str) -> Result<VtkRead, VtkError> {
+    read_vtu_bytes_with(bytes, name, &ReadOptions::default())
+}
+
+/// [`read_vtu_bytes`] with options.
+pub fn read_vtu_bytes_with(
+    bytes: &[u8],
+    name: &str,
+    opts: &ReadOptions,
+) -> Result<VtkRead, VtkError> {
+    xml::read::read_with(bytes, name, opts)
+}
+
+/// Reads a parallel XML file (`.pvtu`, `.pvts`, `.pvtr`, `.pvti`): every
+/// piece it names, relative to its folder, read in parallel, ghost cells
+/// dropped, shared points welded into one mesh.
+pub fn read_parallel_file(path: &Path) -> Result<VtkRead, VtkError> {
+    read_parallel_file_with(path, &ReadOptions::default())
+}
+
+/// [`read_parallel_file`] with options (applied to every piece).
+pub fn read_parallel_file_with(path: &Path, opts: &ReadOptions) -> Result<VtkRead, VtkError> {
+    collection::read_parallel(path, opts)
+}
+
+/// Reads a multi-block `.vtm` file: its volume blocks (any of the XML
+/// formats above, nested blocks included) welded into one mesh; polygonal
+/// and surface-only blocks are skipped with a note. `block` keeps only the
+/// blocks of that name or path (`outer/inner`).
+pub fn read_multiblock_file(path: &Path, block: Option<&str>) -> Result<VtkRead, VtkError> {
+    read_multiblock_file_with(path, block, &ReadOptions::default())
+}
+
+/// [`read_multiblock_file`] with options (applied to every block).
+pub fn read_multiblock_file_with(
+    path: &Path,
+    block: Option<&str>,
+    opts: &ReadOptions,
+) -> Result<VtkRead, VtkError> {
+    collection::read_multiblock(path, block, opts)
+}
