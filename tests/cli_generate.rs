@@ -74,6 +74,29 @@ fn generate_solid_then_info() {
         .map(|f| f["name"].as_str().unwrap())
         .collect();
     assert_eq!(names, ["wave", "linear"]);
+
+    // The same shell partitioned: 3 piece files welded back into it.
+    let parts = json(
+        &dir,
+        &[
+            "generate",
+            "solid",
+            "--tets",
+            "20000",
+            "--pieces",
+            "3",
+            "-o",
+            "shell.pvtu",
+        ],
+    );
+    assert_eq!(parts["files"].as_array().map(Vec::len), Some(4), "{parts}");
+    check_files(&dir, &parts);
+    let joined = json(&dir, &["info", "shell.pvtu", "--json"]);
+    assert_eq!(joined["tets"], info["tets"]);
+    assert_eq!(joined["points"], info["points"]);
+    assert_eq!(joined["pieces"], 3);
+    assert_eq!(count(&joined["components"]), 1);
+    assert_eq!(count(&joined["seam_faces"]), 0);
 }
 
 #[test]

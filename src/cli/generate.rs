@@ -10,6 +10,7 @@ use std::time::Instant;
 use anyhow::{bail, Context};
 use clap::{Args, Subcommand, ValueEnum};
 use serde::Serialize;
+use tetray_io::generate::pieces::write_pvtu;
 use tetray_io::generate::solid::{TorusShell, FIELDS};
 use tetray_io::generate::{Refinement, RefinementPlan};
 use tetray_io::plot3d::{plot3d_split_counts, read_plot3d_grid_files};
@@ -93,9 +94,14 @@ pub struct SolidArgs {
     /// G: thousands, millions, billions).
     #[arg(long, value_name = "N", value_parser = parse_tet_count)]
     pub tets: usize,
-    /// Output file (.vtu).
+    /// Output file: .vtu, or .pvtu for a partitioned file whose pieces go
+    /// to the folder <stem>/ beside it.
     #[arg(short, long, value_name = "FILE")]
     pub output: PathBuf,
+    /// Piece files of a .pvtu output (slabs around the torus axis, joined
+    /// on load by welding their shared points).
+    #[arg(long, value_name = "N", default_value_t = 4)]
+    pub pieces: usize,
 }
 
 #[derive(Debug, Serialize)]
@@ -263,19 +269,38 @@ fn same_file(a: &Path, b: &Path) -> bool {
 
 fn solid(args: &SolidArgs) -> anyhow::Result<()> {
     let start = Instant::now();
-    let is_vtu = args
+    let extension = args
         .output
         .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("vtu"));
-    if !is_vtu {
-        bail!("{}: the output must be a .vtu file", args.output.display());
-    }
+        .map(|e| e.to_string_lossy().to_lowercase());
+    let partitioned = match extension.as_deref() {
+        Some("vtu") => false,
+        Some("pvtu") => true,
+        _ => bail!(
+            "{}: the output must be a .vtu or .pvtu file",
+            args.output.display()
+        ),
+    };
     let shell = TorusShell::with_tets(args.tets)?;
     if let Some(dir) = args.output.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir)
             .with_context(|| format!("{}: cannot create the folder", dir.display()))?;
     }
-    let bytes = shell.write_vtu(&args.output)?;
+    let files: Vec<FileJson> = if partitioned {
+        write_pvtu(&shell, &args.output, args.pieces)?
+            .into_iter()
+            .map(|(path, bytes)| FileJson {
+                path: path.display().to_string(),
+                bytes,
+            })
+            .collect()
+    } else {
+        vec![FileJson {
+            path: args.output.display().to_string(),
+            bytes: shell.write_vtu(&args.output)?,
+        }]
+    };
+    let bytes = files.iter().map(|f| f.bytes).sum();
     let json = SolidJson {
         kind: "solid",
         shape: "torus shell",
@@ -287,10 +312,7 @@ fn solid(args: &SolidArgs) -> anyhow::Result<()> {
         points: shell.point_count(),
         tets: shell.tet_count(),
         fields: FIELDS,
-        files: vec![FileJson {
-            path: args.output.display().to_string(),
-            bytes,
-        }],
+        files,
         bytes,
         seconds: start.elapsed().as_secs_f64(),
     };

@@ -4,12 +4,14 @@
 //!   (8 per level of doubling), coordinates and solution interpolated
 //!   trilinearly, written as PLOT3D files the reader splits as usual;
 //! - [`solid`]: a procedural nonconvex solid (a thick torus shell) with
-//!   analytic point scalars, written as `.vtu`.
+//!   analytic point scalars, written as `.vtu`, or as a partitioned
+//!   `.pvtu` of piece files ([`pieces`]).
 //!
 //! Both stream their output: a refinement is computed point by point as it
 //! is written, the solid's tetrahedra chunk by chunk.
 
 mod folded;
+pub mod pieces;
 mod plan;
 mod refine;
 pub mod solid;

@@ -156,7 +156,7 @@ impl TorusShell {
     }
 
     /// Index of point `(iu, iv, iw)` (angles wrapped).
-    fn index(&self, iu: usize, iv: usize, iw: usize) -> u32 {
+    pub(super) fn index(&self, iu: usize, iv: usize, iw: usize) -> u32 {
         let [nu, nv, _] = self.cells;
         ((iu % nu) + nu * ((iv % nv) + nv * iw)) as u32
     }
