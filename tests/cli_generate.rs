@@ -102,9 +102,9 @@ fn generate_solid_then_info() {
 #[test]
 fn generate_plot3d_then_info() {
     let dir = scratch("plot3d");
-    let data = data_dir();
-    let data = data.to_str().unwrap();
-    // Below the dataset's own size: factors 1, the grid written back.
+    // Below the dataset's own size: factors 1, the grid written back. No
+    // --data-dir, run from a scratch folder: the dataset is found in the
+    // repository the binary was built from.
     let summary = json(
         &dir,
         &[
@@ -112,13 +112,16 @@ fn generate_plot3d_then_info() {
             "plot3d",
             "--dataset",
             "bluntfin",
-            "--data-dir",
-            data,
             "--tets",
             "20000",
             "-o",
             "out",
         ],
+    );
+    let source = PathBuf::from(summary["source"].as_str().expect("source"));
+    assert_eq!(
+        source.canonicalize().unwrap(),
+        data_dir().join("bluntfinxyz.bin").canonicalize().unwrap()
     );
     assert_eq!(summary["factors"], serde_json::json!([1, 1, 1]));
     assert_eq!(count(&summary["tets"]), 187_395 - 77);
