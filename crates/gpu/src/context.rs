@@ -27,10 +27,10 @@ fn quiet_device_select() {
     }
     // libwayland's own test: XDG_RUNTIME_DIR must name a directory, unless
     // WAYLAND_DISPLAY is an absolute socket path.
-    let runtime_dir_ok = std::env::var_os("XDG_RUNTIME_DIR")
-        .is_some_and(|dir| std::path::Path::new(&dir).is_dir());
-    let absolute_socket = std::env::var_os("WAYLAND_DISPLAY")
-        .is_some_and(|d| std::path::Path::new(&d).is_absolute());
+    let runtime_dir_ok =
+        std::env::var_os("XDG_RUNTIME_DIR").is_some_and(|dir| std::path::Path::new(&dir).is_dir());
+    let absolute_socket =
+        std::env::var_os("WAYLAND_DISPLAY").is_some_and(|d| std::path::Path::new(&d).is_absolute());
     if runtime_dir_ok || absolute_socket {
         return;
     }
