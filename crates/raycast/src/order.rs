@@ -11,8 +11,6 @@
 use rayon::prelude::*;
 use tetray_mesh::{BoundaryFace, TetMesh, Topology, FACE_VERTICES, NO_NEIGHBOR};
 
-use crate::scene::{WalkTet, FINAL_EXIT};
-
 /// Bits per axis of the Morton code (3 x 21 = 63 bits).
 const BITS: u32 = 21;
 
@@ -43,14 +41,13 @@ fn morton(p: [f32; 3], lo: [f32; 3], scale: [f32; 3]) -> u64 {
     spread(q(0)) | (spread(q(1)) << 1) | (spread(q(2)) << 2)
 }
 
-/// Renumbers `mesh` (points, tetrahedra, point fields), `topology`, the
-/// walk records and the active `scalar` along the Morton curve of the mesh
+/// Renumbers `mesh` (points, tetrahedra, point fields), `topology` and the
+/// active `scalar` along the Morton curve of the mesh
 /// bounds: points by their own code, tetrahedra by the code of their
 /// centroid (equal codes in input order).
 pub(crate) fn morton_reorder(
     mesh: &mut TetMesh,
     topology: &mut Topology,
-    walk: &mut Vec<WalkTet>,
     scalar: &mut Vec<f32>,
 ) -> Reorder {
     let (lo, hi) = mesh.bounds();
@@ -121,24 +118,11 @@ pub(crate) fn morton_reorder(
             })
         })
         .collect();
-    *walk = tet_from
-        .par_iter()
-        .map(|&old| {
-            let record = &walk[old as usize];
-            WalkTet {
-                verts: record.verts.map(|v| point_to[v as usize]),
-                next: record.next.map(|n| {
-                    if n >= FINAL_EXIT {
-                        n
-                    } else {
-                        (tet_to[(n >> 2) as usize] << 2) | (n & 3)
-                    }
-                }),
-            }
-        })
-        .collect();
     // Boundary faces are listed by tetrahedron, then local face.
+    drop(tet_to);
     let mut boundary_faces = Vec::with_capacity(topology.boundary_faces.len());
+    // The old index goes first: not two of them at once.
+    topology.boundary_index = Vec::new();
     let mut boundary_index = vec![[u32::MAX; 4]; mesh.tets.len()];
     for (t, (nb, tet)) in topology.neighbors.iter().zip(&mesh.tets).enumerate() {
         for f in 0..4 {

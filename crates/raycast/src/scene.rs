@@ -157,17 +157,24 @@ impl Scene {
                 points,
             });
         }
-        let mut walk = walk_tets(&mesh, &topology)?;
+        // With the Morton order the records are only checked here (errors
+        // name the input's ids) and built after the renumbering, so that
+        // they and the copies it makes are not in memory at once.
+        let walk = match cell_order {
+            CellOrder::File => Some(walk_tets(&mesh, &topology)?),
+            CellOrder::Morton => {
+                check_walk_tets(&mesh, &topology)?;
+                None
+            }
+        };
         check_boundary_faces(&mesh, &topology)?;
         let (mut mesh, mut topology, mut scalar) = (mesh, topology, scalar);
-        let order = match cell_order {
-            CellOrder::File => None,
-            CellOrder::Morton => Some(morton_reorder(
-                &mut mesh,
-                &mut topology,
-                &mut walk,
-                &mut scalar,
-            )),
+        let (mut walk, order) = match walk {
+            Some(walk) => (walk, None),
+            None => {
+                let order = morton_reorder(&mut mesh, &mut topology, &mut scalar);
+                (walk_tets(&mesh, &topology)?, Some(order))
+            }
         };
         let bvh = BoundaryBvh::build(&mesh, &topology, preset)?;
         for (face, is_final) in topology.boundary_faces.iter().zip(bvh.final_exit_faces()) {
@@ -283,48 +290,67 @@ fn active_field(mesh: &TetMesh, name: &str) -> Result<Vec<f32>, SceneError> {
 /// neighbour's local index of it (the neighbour's vertex off the face): the
 /// walk then knows which vertex of the next tetrahedron is new.
 fn walk_tets(mesh: &TetMesh, topology: &Topology) -> Result<Vec<WalkTet>, SceneError> {
-    let record = |(tet, (verts, neighbors)): (usize, (&[u32; 4], &[u32; 4]))| {
-        let mut next = [NO_NEIGHBOR; 4];
-        for (face, &neighbor) in neighbors.iter().enumerate() {
-            if neighbor == NO_NEIGHBOR {
-                continue;
-            }
-            let bad = || SceneError::BadNeighbor {
-                tet,
-                face,
-                neighbor,
-            };
-            let other = mesh.tets.get(neighbor as usize).ok_or_else(bad)?;
-            let shared = FACE_VERTICES[face].map(|v| verts[v]);
-            let mut off = (0..4).filter(|&i| !shared.contains(&other[i]));
-            let (Some(local), None) = (off.next(), off.next()) else {
-                return Err(bad());
-            };
-            if neighbor as usize == tet {
-                return Err(bad());
-            }
-            next[face] = (neighbor << 2) | local as u32;
-        }
-        Ok(WalkTet {
-            verts: *verts,
-            next,
-        })
-    };
     // In parallel; on a bad mesh the error of the first bad tetrahedron.
     mesh.tets
         .par_iter()
         .zip(&topology.neighbors)
         .enumerate()
-        .map(record)
+        .map(|t| walk_record(mesh, t))
         .collect::<Result<Vec<_>, _>>()
-        .map_err(|_| {
-            mesh.tets
-                .iter()
-                .zip(&topology.neighbors)
-                .enumerate()
-                .find_map(|t| record(t).err())
-                .expect("a bad tetrahedron")
-        })
+        .map_err(|_| first_bad(mesh, topology))
+}
+
+/// [`walk_tets`]' checks alone, keeping nothing.
+fn check_walk_tets(mesh: &TetMesh, topology: &Topology) -> Result<(), SceneError> {
+    mesh.tets
+        .par_iter()
+        .zip(&topology.neighbors)
+        .enumerate()
+        .try_for_each(|t| walk_record(mesh, t).map(|_| ()))
+        .map_err(|_| first_bad(mesh, topology))
+}
+
+/// The error of the first tetrahedron [`walk_record`] rejects.
+fn first_bad(mesh: &TetMesh, topology: &Topology) -> SceneError {
+    mesh.tets
+        .iter()
+        .zip(&topology.neighbors)
+        .enumerate()
+        .find_map(|t| walk_record(mesh, t).err())
+        .expect("a bad tetrahedron")
+}
+
+/// The record of one tetrahedron, checking that each neighbour shares the
+/// face.
+fn walk_record(
+    mesh: &TetMesh,
+    (tet, (verts, neighbors)): (usize, (&[u32; 4], &[u32; 4])),
+) -> Result<WalkTet, SceneError> {
+    let mut next = [NO_NEIGHBOR; 4];
+    for (face, &neighbor) in neighbors.iter().enumerate() {
+        if neighbor == NO_NEIGHBOR {
+            continue;
+        }
+        let bad = || SceneError::BadNeighbor {
+            tet,
+            face,
+            neighbor,
+        };
+        let other = mesh.tets.get(neighbor as usize).ok_or_else(bad)?;
+        let shared = FACE_VERTICES[face].map(|v| verts[v]);
+        let mut off = (0..4).filter(|&i| !shared.contains(&other[i]));
+        let (Some(local), None) = (off.next(), off.next()) else {
+            return Err(bad());
+        };
+        if neighbor as usize == tet {
+            return Err(bad());
+        }
+        next[face] = (neighbor << 2) | local as u32;
+    }
+    Ok(WalkTet {
+        verts: *verts,
+        next,
+    })
 }
 
 /// The walk starts from a boundary face's tetrahedron and local face, and
