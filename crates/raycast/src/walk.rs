@@ -208,14 +208,14 @@ impl Cell {
         let v = Vec3::new(q[0], q[1], q[2]);
         let p = ray.project4([v; 4])[0];
         let mut cell = *self;
-        for (i, &v) in verts.iter().enumerate() {
+        for i in 0..4 {
             let j = if i == apex {
                 4
-            } else if old[0] == v {
+            } else if old[0] == verts[i] {
                 0
-            } else if old[1] == v {
+            } else if old[1] == verts[i] {
                 1
-            } else if old[2] == v {
+            } else if old[2] == verts[i] {
                 2
             } else {
                 3
