@@ -158,10 +158,10 @@ const fn bit_of(others: [usize; 3], code: usize, k: usize) -> bool {
 /// across the ray (`x`, `y`, in f64 so that edge functions of f32
 /// projections are exact), its distance along the ray and its scalar.
 ///
+/// All four vertices are projected anew at every step, lane-parallel:
 /// `project4` gives a point the same bits whatever its lane and whenever it
-/// is projected, so shared faces agree exactly; stepping across a face
-/// keeps the three shared vertices and projects only the new one
-/// ([`Cell::across`]).
+/// is projected, so shared faces still agree exactly, and no bookkeeping of
+/// which vertices carry over is needed.
 #[derive(Clone, Copy)]
 struct Cell {
     x: [f64; 4],
@@ -188,50 +188,6 @@ impl Cell {
             z: p.map(|p| p.z),
             s: q.map(|q| q[3]),
         }
-    }
-
-    /// The cell across a face: `verts` are the new tetrahedron's points,
-    /// `apex` its vertex off the shared face, `old` the points of `self`.
-    /// The three shared points keep their projections (the same bits
-    /// `project4` would give them again); only the apex is loaded and
-    /// projected.
-    #[inline(always)]
-    fn across(
-        &self,
-        scene: &Scene,
-        ray: &RayFrame,
-        old: [u32; 4],
-        verts: [u32; 4],
-        apex: usize,
-    ) -> Cell {
-        let q = scene.points[verts[apex] as usize];
-        let v = Vec3::new(q[0], q[1], q[2]);
-        let p = ray.project4([v; 4])[0];
-        let mut cell = *self;
-        for i in 0..4 {
-            let j = if i == apex {
-                4
-            } else if old[0] == verts[i] {
-                0
-            } else if old[1] == verts[i] {
-                1
-            } else if old[2] == verts[i] {
-                2
-            } else {
-                3
-            };
-            if j < 4 {
-                cell.x[i] = self.x[j];
-                cell.y[i] = self.y[j];
-                cell.z[i] = self.z[j];
-                cell.s[i] = self.s[j];
-            }
-        }
-        cell.x[apex] = f64::from(p.x);
-        cell.y[apex] = f64::from(p.y);
-        cell.z[apex] = p.z;
-        cell.s[apex] = q[3];
-        cell
     }
 
     /// Edge function of the directed edge `a -> b` (exact in f64).
@@ -338,8 +294,6 @@ pub(crate) struct Walker<S> {
     skip: Vec<u32>,
     skip_t: f32,
     tet: usize,
-    /// The points of `tet`.
-    verts: [u32; 4],
     f_in: usize,
     cell: Cell,
     t_in: f32,
@@ -358,7 +312,6 @@ impl<S: Copy> Walker<S> {
             skip: Vec::new(),
             skip_t: f32::NAN,
             tet: 0,
-            verts: [0; 4],
             f_in: 0,
             cell: Cell::EMPTY,
             t_in: 0.0,
@@ -424,8 +377,7 @@ impl<S: Copy> Walker<S> {
         };
         self.tet = bf.tet as usize;
         self.f_in = usize::from(bf.local_face);
-        self.verts = scene.walk[self.tet].verts;
-        self.cell = Cell::load(scene, &self.ray, self.verts);
+        self.cell = Cell::load(scene, &self.ray, scene.walk[self.tet].verts);
         self.t_in = hit.t.max(self.t_cursor);
         self.s_in = self.cell.crossing(self.f_in).1;
         self.sample_in = Some(integrator.sample(self.s_in));
@@ -499,11 +451,7 @@ impl<S: Copy> Walker<S> {
         }
         self.tet = (next >> 2) as usize;
         self.f_in = (next & 3) as usize;
-        let verts = scene.walk[self.tet].verts;
-        self.cell = self
-            .cell
-            .across(scene, &self.ray, self.verts, verts, self.f_in);
-        self.verts = verts;
+        self.cell = Cell::load(scene, &self.ray, scene.walk[self.tet].verts);
     }
 }
 
