@@ -1,5 +1,6 @@
-//! Mesh stages: face topology (tets/s), the boundary BVH's build (faces/s)
-//! and its entry queries (rays/s), on the Blunt Fin and a generated box.
+//! Mesh stages: face topology (tets/s), the scene (walk records, Morton
+//! order, BVH; tets/s), the boundary BVH's build (faces/s) and its entry
+//! queries (rays/s), on the Blunt Fin and a generated box.
 
 use std::hint::black_box;
 use std::time::Duration;
@@ -10,6 +11,7 @@ use tetray_boundary_bvh::watertight::RayFrame;
 use tetray_boundary_bvh::{BoundaryBvh, BuildPreset};
 use tetray_mesh::Topology;
 use tetray_raycast::scenes::{box_grid, CellSplit};
+use tetray_raycast::{CellOrder, Scene};
 
 mod support;
 
@@ -65,5 +67,30 @@ fn bvh(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, topology_build, bvh);
+/// `Scene::new_with_order` in the file's order and in Morton order (the
+/// difference is the renumbering's cost), fastest BVH preset.
+fn scene_build(c: &mut Criterion) {
+    let loaded = support::blunt_fin_mesh();
+    let mut group = c.benchmark_group("scene_build");
+    group.sample_size(10);
+    group.measurement_time(Duration::from_secs(3));
+    group.throughput(Throughput::Elements(loaded.mesh.tets.len() as u64));
+    for (name, order) in [("file", CellOrder::File), ("morton", CellOrder::Morton)] {
+        group.bench_function(BenchmarkId::new("blunt_fin", name), |b| {
+            b.iter(|| {
+                Scene::new_with_order(
+                    loaded.mesh.clone(),
+                    loaded.topology.clone(),
+                    "density",
+                    BuildPreset::Fastest,
+                    order,
+                )
+                .expect("scene")
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, topology_build, scene_build, bvh);
 criterion_main!(benches);

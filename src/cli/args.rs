@@ -223,9 +223,11 @@ pub struct WalkArgs {
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..))]
     pub threads: Option<u16>,
     /// Boundary BVH build preset: fastest, very-fast, fast, medium, slow,
-    /// very-slow.
-    #[arg(long, value_name = "PRESET", default_value = "very-slow", value_parser = parse_bvh_preset)]
-    pub bvh_preset: BuildPreset,
+    /// very-slow. Default: very-slow up to 100 000 boundary faces (the best
+    /// tree, built in well under a second), fast above (very-slow costs
+    /// about 3 us per face, single-threaded).
+    #[arg(long, value_name = "PRESET", value_parser = parse_bvh_preset)]
+    pub bvh_preset: Option<BuildPreset>,
     /// Visibility sort of --renderer project: centroid (cell-centre depth,
     /// as VTK's projected tetrahedra), mpvo (Williams; exact on convex,
     /// connected meshes), mpvonc (its heuristic for nonconvex meshes).
@@ -292,6 +294,16 @@ pub fn parse_method(text: &str) -> Result<Method, String> {
 pub fn parse_sort(text: &str) -> Result<SortKind, String> {
     text.parse()
         .map_err(|e: tetray_project::sort::UnknownSort| e.to_string())
+}
+
+/// The BVH preset for a mesh with `faces` boundary faces: the one given, or
+/// the default described at [`WalkArgs::bvh_preset`].
+pub fn bvh_preset_for(given: Option<BuildPreset>, faces: usize) -> BuildPreset {
+    given.unwrap_or(if faces <= 100_000 {
+        BuildPreset::VerySlow
+    } else {
+        BuildPreset::Fast
+    })
 }
 
 pub fn parse_bvh_preset(text: &str) -> Result<BuildPreset, String> {

@@ -122,7 +122,7 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<()> {
         early_termination: 1.0,
         max_steps: None,
         threads: args.threads,
-        bvh_preset: args.bvh_preset,
+        bvh_preset: Some(args.bvh_preset),
         sort: SortKind::Mpvonc,
         no_adaptive_tf: args.no_adaptive_tf,
     };

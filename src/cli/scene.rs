@@ -221,7 +221,8 @@ pub fn prepare(frame: FrameArgs<'_>, log: &dyn Fn(String)) -> anyhow::Result<Set
     });
 
     let start = Instant::now();
-    let scene = Scene::new(loaded.mesh, loaded.topology, &field, walk.bvh_preset)
+    let preset = super::args::bvh_preset_for(walk.bvh_preset, loaded.topology.boundary_faces.len());
+    let scene = Scene::new(loaded.mesh, loaded.topology, &field, preset)
         .with_context(|| format!("{name}: preparing the mesh for ray casting"))?;
     let scene_time = start.elapsed();
     let bvh = scene.bvh.stats();

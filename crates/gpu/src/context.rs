@@ -4,6 +4,41 @@
 
 use crate::GpuError;
 
+/// Turns off Mesa's Vulkan device-selection layer when it could only fail
+/// noisily.
+///
+/// `VK_LAYER_MESA_device_select` (an implicit layer installed with Mesa's
+/// Vulkan drivers, lavapipe included) orders the physical devices by the
+/// display's GPU: since wgpu enables `VK_KHR_wayland_surface` whenever the
+/// driver has it, the layer calls `wl_display_connect(NULL)` from
+/// `vkEnumeratePhysicalDevices`, and libwayland prints `error:
+/// XDG_RUNTIME_DIR is invalid or not set in the environment.` on stderr
+/// (once per enumeration, twice per adapter probe) when there is no runtime
+/// directory, i.e. no Wayland session to ask. The layer's own switch,
+/// `NODEVICE_SELECT=1` (read by the Vulkan loader when the instance is
+/// created), skips it. The order it would give matters little here: wgpu
+/// ranks adapters by type and `WGPU_POWER_PREF` itself. Left alone when
+/// the user chose (`NODEVICE_SELECT`, `MESA_VK_DEVICE_SELECT`,
+/// `DRI_PRIME`) or when a Wayland connection could succeed.
+fn quiet_device_select() {
+    let set = |name: &str| std::env::var_os(name).is_some_and(|v| !v.is_empty());
+    if set("NODEVICE_SELECT") || set("MESA_VK_DEVICE_SELECT") || set("DRI_PRIME") {
+        return;
+    }
+    // libwayland's own test: XDG_RUNTIME_DIR must name a directory, unless
+    // WAYLAND_DISPLAY is an absolute socket path.
+    let runtime_dir_ok =
+        std::env::var_os("XDG_RUNTIME_DIR").is_some_and(|dir| std::path::Path::new(&dir).is_dir());
+    let absolute_socket =
+        std::env::var_os("WAYLAND_DISPLAY").is_some_and(|d| std::path::Path::new(&d).is_absolute());
+    if runtime_dir_ok || absolute_socket {
+        return;
+    }
+    // Set before any Vulkan call of this process; no thread of ours reads
+    // the environment concurrently (the loader reads it in this thread).
+    std::env::set_var("NODEVICE_SELECT", "1");
+}
+
 /// A device ready for the ray caster.
 pub struct GpuContext {
     pub device: wgpu::Device,
@@ -21,6 +56,7 @@ impl GpuContext {
     }
 
     async fn new_async() -> Result<GpuContext, GpuError> {
+        quiet_device_select();
         let mut descriptor = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
         if std::env::var_os("WGPU_BACKEND").is_none() {
             // Compute needs no window system: skip the GL probe (and its

@@ -11,6 +11,7 @@
 pub mod camera;
 mod cpu;
 pub mod image;
+pub mod order;
 mod scene;
 pub mod scenes;
 mod walk;
@@ -21,5 +22,6 @@ pub use cpu::{
     RayTrace, RenderError, RenderOptions, RenderOutput, RenderStats,
 };
 pub use image::{Image, ImageError};
-pub use scene::{Scene, SceneError, WalkTet, FINAL_EXIT};
+pub use order::Reorder;
+pub use scene::{CellOrder, Scene, SceneError, WalkTet, FINAL_EXIT};
 pub use walk::{packed_exit_table, SegmentIntegrator};

@@ -2,8 +2,11 @@
 //! scalar field, and a compact copy of what the walk reads per step.
 
 use glam::Vec3;
+use rayon::prelude::*;
 use tetray_boundary_bvh::{BoundaryBvh, BuildPreset, BvhError};
 use tetray_mesh::{LoadedMesh, TetMesh, Topology, FACE_VERTICES, NO_NEIGHBOR};
+
+use crate::order::{morton_reorder, Reorder};
 
 /// Why a [`Scene`] could not be made from a mesh.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -80,6 +83,19 @@ pub struct Scene {
     /// Per point: position and active scalar, read together.
     pub(crate) points: Vec<[f32; 4]>,
     pub(crate) bounds: (Vec3, Vec3),
+    /// The renumbering applied to the input mesh, if any.
+    order: Option<Reorder>,
+}
+
+/// How [`Scene::new_with_order`] numbers points and tetrahedra.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum CellOrder {
+    /// As given (the file's numbering).
+    File,
+    /// Along a Morton curve ([`crate::order`]): rays walk through
+    /// tetrahedra and points close together in memory. The default.
+    #[default]
+    Morton,
 }
 
 impl Scene {
@@ -87,11 +103,27 @@ impl Scene {
     /// face neighbours sharing their face, boundary faces matching their
     /// tetrahedra), so that rendering cannot fail on the mesh, and builds
     /// the boundary BVH with `preset`.
+    ///
+    /// Points and tetrahedra are renumbered along a Morton curve
+    /// ([`CellOrder::Morton`]); [`Scene::input_tet`] and
+    /// [`Scene::input_point`] map the scene's ids back to the input's.
+    /// Errors name input ids (validation runs first).
     pub fn new(
         mesh: TetMesh,
         topology: Topology,
         field: &str,
         preset: BuildPreset,
+    ) -> Result<Scene, SceneError> {
+        Scene::new_with_order(mesh, topology, field, preset, CellOrder::default())
+    }
+
+    /// [`Scene::new`] with the numbering chosen.
+    pub fn new_with_order(
+        mesh: TetMesh,
+        topology: Topology,
+        field: &str,
+        preset: BuildPreset,
+        cell_order: CellOrder,
     ) -> Result<Scene, SceneError> {
         let scalar = active_field(&mesh, field)?;
         if mesh.tets.is_empty() {
@@ -106,23 +138,44 @@ impl Scene {
                 mesh: mesh.tets.len(),
             });
         }
-        if let Some((point, p)) = mesh.points.iter().enumerate().find(|(_, p)| !p.is_finite()) {
+        if let Some(point) = mesh.points.par_iter().position_first(|p| !p.is_finite()) {
             return Err(SceneError::NonFinitePoint {
                 point,
-                coords: p.to_array(),
+                coords: mesh.points[point].to_array(),
             });
         }
-        for (tet, verts) in mesh.tets.iter().enumerate() {
-            if let Some(&point) = verts.iter().find(|&&v| v as usize >= mesh.points.len()) {
-                return Err(SceneError::PointOutOfRange {
-                    tet,
-                    point,
-                    points: mesh.points.len(),
-                });
-            }
+        let points = mesh.points.len();
+        let out_of_range = |verts: &[u32; 4]| verts.iter().copied().find(|&v| v as usize >= points);
+        if let Some(tet) = mesh
+            .tets
+            .par_iter()
+            .position_first(|v| out_of_range(v).is_some())
+        {
+            return Err(SceneError::PointOutOfRange {
+                tet,
+                point: out_of_range(&mesh.tets[tet]).unwrap_or_default(),
+                points,
+            });
         }
-        let mut walk = walk_tets(&mesh, &topology)?;
+        // With the Morton order the records are only checked here (errors
+        // name the input's ids) and built after the renumbering, so that
+        // they and the copies it makes are not in memory at once.
+        let walk = match cell_order {
+            CellOrder::File => Some(walk_tets(&mesh, &topology)?),
+            CellOrder::Morton => {
+                check_walk_tets(&mesh, &topology)?;
+                None
+            }
+        };
         check_boundary_faces(&mesh, &topology)?;
+        let (mut mesh, mut topology, mut scalar) = (mesh, topology, scalar);
+        let (mut walk, order) = match walk {
+            Some(walk) => (walk, None),
+            None => {
+                let order = morton_reorder(&mut mesh, &mut topology, &mut scalar);
+                (walk_tets(&mesh, &topology)?, Some(order))
+            }
+        };
         let bvh = BoundaryBvh::build(&mesh, &topology, preset)?;
         for (face, is_final) in topology.boundary_faces.iter().zip(bvh.final_exit_faces()) {
             if is_final {
@@ -145,6 +198,7 @@ impl Scene {
             walk,
             points,
             bounds,
+            order,
         })
     }
 
@@ -156,6 +210,25 @@ impl Scene {
         preset: BuildPreset,
     ) -> Result<Scene, SceneError> {
         Scene::new(loaded.mesh, loaded.topology, field, preset)
+    }
+
+    /// The renumbering applied to the input (`None`: input order).
+    pub fn reorder(&self) -> Option<&Reorder> {
+        self.order.as_ref()
+    }
+
+    /// The input's (file's) id of the scene's tetrahedron `tet`.
+    pub fn input_tet(&self, tet: u32) -> u32 {
+        self.order
+            .as_ref()
+            .map_or(tet, |o| o.tet_from[tet as usize])
+    }
+
+    /// The input's (file's) id of the scene's point `point`.
+    pub fn input_point(&self, point: u32) -> u32 {
+        self.order
+            .as_ref()
+            .map_or(point, |o| o.point_from[point as usize])
     }
 
     /// Axis-aligned bounds of the mesh points.
@@ -217,35 +290,67 @@ fn active_field(mesh: &TetMesh, name: &str) -> Result<Vec<f32>, SceneError> {
 /// neighbour's local index of it (the neighbour's vertex off the face): the
 /// walk then knows which vertex of the next tetrahedron is new.
 fn walk_tets(mesh: &TetMesh, topology: &Topology) -> Result<Vec<WalkTet>, SceneError> {
-    let mut walk = Vec::with_capacity(mesh.tets.len());
-    for (tet, (verts, neighbors)) in mesh.tets.iter().zip(&topology.neighbors).enumerate() {
-        let mut next = [NO_NEIGHBOR; 4];
-        for (face, &neighbor) in neighbors.iter().enumerate() {
-            if neighbor == NO_NEIGHBOR {
-                continue;
-            }
-            let bad = SceneError::BadNeighbor {
-                tet,
-                face,
-                neighbor,
-            };
-            let other = mesh.tets.get(neighbor as usize).ok_or(bad.clone())?;
-            let shared = FACE_VERTICES[face].map(|v| verts[v]);
-            let mut off = (0..4).filter(|&i| !shared.contains(&other[i]));
-            let (Some(local), None) = (off.next(), off.next()) else {
-                return Err(bad);
-            };
-            if neighbor as usize == tet {
-                return Err(bad);
-            }
-            next[face] = (neighbor << 2) | local as u32;
+    // In parallel; on a bad mesh the error of the first bad tetrahedron.
+    mesh.tets
+        .par_iter()
+        .zip(&topology.neighbors)
+        .enumerate()
+        .map(|t| walk_record(mesh, t))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(|_| first_bad(mesh, topology))
+}
+
+/// [`walk_tets`]' checks alone, keeping nothing.
+fn check_walk_tets(mesh: &TetMesh, topology: &Topology) -> Result<(), SceneError> {
+    mesh.tets
+        .par_iter()
+        .zip(&topology.neighbors)
+        .enumerate()
+        .try_for_each(|t| walk_record(mesh, t).map(|_| ()))
+        .map_err(|_| first_bad(mesh, topology))
+}
+
+/// The error of the first tetrahedron [`walk_record`] rejects.
+fn first_bad(mesh: &TetMesh, topology: &Topology) -> SceneError {
+    mesh.tets
+        .iter()
+        .zip(&topology.neighbors)
+        .enumerate()
+        .find_map(|t| walk_record(mesh, t).err())
+        .expect("a bad tetrahedron")
+}
+
+/// The record of one tetrahedron, checking that each neighbour shares the
+/// face.
+fn walk_record(
+    mesh: &TetMesh,
+    (tet, (verts, neighbors)): (usize, (&[u32; 4], &[u32; 4])),
+) -> Result<WalkTet, SceneError> {
+    let mut next = [NO_NEIGHBOR; 4];
+    for (face, &neighbor) in neighbors.iter().enumerate() {
+        if neighbor == NO_NEIGHBOR {
+            continue;
         }
-        walk.push(WalkTet {
-            verts: *verts,
-            next,
-        });
+        let bad = || SceneError::BadNeighbor {
+            tet,
+            face,
+            neighbor,
+        };
+        let other = mesh.tets.get(neighbor as usize).ok_or_else(bad)?;
+        let shared = FACE_VERTICES[face].map(|v| verts[v]);
+        let mut off = (0..4).filter(|&i| !shared.contains(&other[i]));
+        let (Some(local), None) = (off.next(), off.next()) else {
+            return Err(bad());
+        };
+        if neighbor as usize == tet {
+            return Err(bad());
+        }
+        next[face] = (neighbor << 2) | local as u32;
     }
-    Ok(walk)
+    Ok(WalkTet {
+        verts: *verts,
+        next,
+    })
 }
 
 /// The walk starts from a boundary face's tetrahedron and local face, and

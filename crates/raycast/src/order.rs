@@ -1,0 +1,158 @@
+//! Space-filling-curve order: points and tetrahedra renumbered along a
+//! Morton (Z-order) curve, so that the tetrahedra a ray walks through, and
+//! their points, lie close together in memory.
+//!
+//! The renumbering is a pure relabelling: every tetrahedron keeps its
+//! vertices in the same local order (so its orientation, its local faces
+//! and every edge function the walk evaluates are unchanged), and the
+//! permutations are kept so that ids can be mapped back to the file's
+//! numbering ([`Reorder::tet_from`], [`Reorder::point_from`]).
+
+use rayon::prelude::*;
+use tetray_mesh::{BoundaryFace, TetMesh, Topology, FACE_VERTICES, NO_NEIGHBOR};
+
+/// Bits per axis of the Morton code (3 x 21 = 63 bits).
+const BITS: u32 = 21;
+
+/// The permutations applied to a mesh: new index -> index in the input.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct Reorder {
+    /// `tet_from[new]`: the input tetrahedron now numbered `new`.
+    pub tet_from: Vec<u32>,
+    /// `point_from[new]`: the input point now numbered `new`.
+    pub point_from: Vec<u32>,
+}
+
+/// Spreads the low 21 bits of `v` three apart.
+fn spread(v: u64) -> u64 {
+    let mut x = v & 0x1f_ffff;
+    x = (x | x << 32) & 0x001f_0000_0000_ffff;
+    x = (x | x << 16) & 0x001f_0000_ff00_00ff;
+    x = (x | x << 8) & 0x100f_00f0_0f00_f00f;
+    x = (x | x << 4) & 0x10c3_0c30_c30c_30c3;
+    x = (x | x << 2) & 0x1249_2492_4924_9249;
+    x
+}
+
+/// Morton code of `p` quantised over the box `lo .. lo + 1 / scale`.
+fn morton(p: [f32; 3], lo: [f32; 3], scale: [f32; 3]) -> u64 {
+    let max = ((1u32 << BITS) - 1) as f32;
+    let q = |i: usize| (((p[i] - lo[i]) * scale[i]).clamp(0.0, 1.0) * max) as u64;
+    spread(q(0)) | (spread(q(1)) << 1) | (spread(q(2)) << 2)
+}
+
+/// Renumbers `mesh` (points, tetrahedra, point fields), `topology` and the
+/// active `scalar` along the Morton curve of the mesh
+/// bounds: points by their own code, tetrahedra by the code of their
+/// centroid (equal codes in input order).
+pub(crate) fn morton_reorder(
+    mesh: &mut TetMesh,
+    topology: &mut Topology,
+    scalar: &mut Vec<f32>,
+) -> Reorder {
+    let (lo, hi) = mesh.bounds();
+    let lo = lo.to_array();
+    let extent = (hi - glam::Vec3::from_array(lo)).to_array();
+    let scale = extent.map(|e| if e > 0.0 { 1.0 / e } else { 0.0 });
+
+    // Points.
+    let mut keys: Vec<(u64, u32)> = mesh
+        .points
+        .par_iter()
+        .enumerate()
+        .map(|(i, p)| (morton(p.to_array(), lo, scale), i as u32))
+        .collect();
+    keys.par_sort_unstable();
+    let point_from: Vec<u32> = keys.par_iter().map(|&(_, i)| i).collect();
+    let mut point_to = vec![0u32; point_from.len()];
+    for (new, &old) in point_from.iter().enumerate() {
+        point_to[old as usize] = new as u32;
+    }
+    mesh.points = point_from
+        .par_iter()
+        .map(|&old| mesh.points[old as usize])
+        .collect();
+    *scalar = point_from
+        .par_iter()
+        .map(|&old| scalar[old as usize])
+        .collect();
+    for field in &mut mesh.fields {
+        if field.values.len() == point_from.len() {
+            field.values = point_from
+                .par_iter()
+                .map(|&old| field.values[old as usize])
+                .collect();
+        }
+    }
+
+    // Tetrahedra, by centroid.
+    let points = &mesh.points;
+    keys.clear();
+    keys.par_extend(mesh.tets.par_iter().enumerate().map(|(t, tet)| {
+        let c = tet.iter().fold(glam::Vec3::ZERO, |c, &v| {
+            c + points[point_to[v as usize] as usize]
+        }) * 0.25;
+        (morton(c.to_array(), lo, scale), t as u32)
+    }));
+    // (code, input index) pairs are distinct: the unstable sort is stable.
+    keys.par_sort_unstable();
+    let tet_from: Vec<u32> = keys.par_iter().map(|&(_, t)| t).collect();
+    drop(keys);
+    let mut tet_to = vec![0u32; tet_from.len()];
+    for (new, &old) in tet_from.iter().enumerate() {
+        tet_to[old as usize] = new as u32;
+    }
+    mesh.tets = tet_from
+        .par_iter()
+        .map(|&old| mesh.tets[old as usize].map(|v| point_to[v as usize]))
+        .collect();
+    topology.neighbors = tet_from
+        .par_iter()
+        .map(|&old| {
+            topology.neighbors[old as usize].map(|n| {
+                if n == NO_NEIGHBOR {
+                    NO_NEIGHBOR
+                } else {
+                    tet_to[n as usize]
+                }
+            })
+        })
+        .collect();
+    // Boundary faces are listed by tetrahedron, then local face.
+    drop(tet_to);
+    let mut boundary_faces = Vec::with_capacity(topology.boundary_faces.len());
+    // The old index goes first: not two of them at once.
+    topology.boundary_index = Vec::new();
+    let mut boundary_index = vec![[u32::MAX; 4]; mesh.tets.len()];
+    for (t, (nb, tet)) in topology.neighbors.iter().zip(&mesh.tets).enumerate() {
+        for f in 0..4 {
+            if nb[f] == NO_NEIGHBOR {
+                boundary_index[t][f] = boundary_faces.len() as u32;
+                boundary_faces.push(BoundaryFace {
+                    tet: t as u32,
+                    local_face: f as u8,
+                    vertices: FACE_VERTICES[f].map(|v| tet[v]),
+                });
+            }
+        }
+    }
+    topology.boundary_faces = boundary_faces;
+    topology.boundary_index = boundary_index;
+    Reorder {
+        tet_from,
+        point_from,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn spread_interleaves() {
+        assert_eq!(spread(0b111), 0b1001001);
+        assert_eq!(spread(0x1f_ffff).count_ones(), 21);
+        let code = morton([1.0, 0.0, 0.0], [0.0; 3], [1.0; 3]);
+        assert_eq!(code, spread(0x1f_ffff));
+    }
+}
