@@ -7,7 +7,8 @@ use std::path::Path;
 use glam::Vec3;
 use tetray_boundary_bvh::BuildPreset;
 use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunction};
-use tetray_mesh::{load, LoadOptions, TetMesh, Topology};
+use tetray_io::{load, LoadOptions};
+use tetray_mesh::{TetMesh, Topology};
 use tetray_raycast::scenes::{add_field, hollow_box, CellSplit, ScalarSpec};
 use tetray_raycast::{render_scalar, Camera, CellOrder, RenderOptions, Scene};
 
