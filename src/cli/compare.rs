@@ -48,7 +48,8 @@ pub struct CompareArgs {
     #[arg(long, value_name = "R,G,B", value_parser = parse_rgb, default_value = "0,0,0", allow_hyphen_values = true)]
     pub background: Vec3,
     /// What to compare with the reference, comma separated, each
-    /// RENDERER[:INTEGRATOR][:SORT]: renderer cpu, gpu or project; the
+    /// RENDERER[:INTEGRATOR][:SORT]: renderer cpu, gpu, project or
+    /// shear-warp (uniform grids; `shear-warp:riemann` post-classifies); the
     /// integrator defaults to --integrator; the sort (project only)
     /// centroid, mpvo or mpvonc (default mpvonc).
     #[arg(
@@ -82,9 +83,10 @@ pub fn parse_spec(text: &str) -> Result<MethodSpec, String> {
         Some("cpu") => RendererArg::Cpu,
         Some("gpu") => RendererArg::Gpu,
         Some("project") => RendererArg::Project,
+        Some("shear-warp") => RendererArg::ShearWarp,
         _ => {
             return Err(format!(
-                "{text:?}: the renderer must be cpu, gpu or project"
+                "{text:?}: the renderer must be cpu, gpu, project or shear-warp"
             ))
         }
     };
@@ -186,6 +188,10 @@ fn render_method(
             format!("project {method} {} vertex-tf", walk.sort)
         }
         RendererArg::Project => format!("project {method} {}", walk.sort),
+        RendererArg::ShearWarp => format!(
+            "shear-warp {}",
+            super::shear_warp::classification(method).name()
+        ),
         _ => format!("{} {method}", engine.name()),
     };
     let render = || {
@@ -193,7 +199,7 @@ fn render_method(
             .render(setup, &setup.camera, &walk, args.size, None)
             .with_context(|| format!("{label}: rendering"))
     };
-    if !matches!(engine, Engine::Cpu) {
+    if !matches!(engine, Engine::Cpu | Engine::ShearWarp(_)) {
         render()?;
     }
     let mut frames: Vec<Frame> = (0..args.frames)
@@ -239,6 +245,10 @@ mod tests {
         );
         assert!(parse_spec("gpu:mpvo").is_err(), "a sort is for project");
         assert!(parse_spec("auto").is_err());
+        assert_eq!(
+            parse_spec("shear-warp:riemann").unwrap().renderer,
+            RendererArg::ShearWarp
+        );
         assert!(parse_spec("cpu:simpson").unwrap_err().contains("neither"));
         assert!(parse_spec("cpu:ppi:exact").is_err());
     }

@@ -11,6 +11,7 @@ mod render;
 mod renderer;
 mod scene;
 mod segment;
+mod shear_warp;
 mod study;
 mod view;
 

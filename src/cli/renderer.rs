@@ -16,6 +16,7 @@ pub enum Engine {
     Cpu,
     Gpu(Box<GpuEngine>),
     Project(Box<ProjectEngine>),
+    ShearWarp(Box<tetray_shearwarp::ShearWarp>),
 }
 
 /// The cell projection with the mesh and integrator uploaded.
@@ -78,6 +79,9 @@ impl Engine {
             RendererArg::Cpu => Ok(Engine::Cpu),
             RendererArg::Gpu => Engine::gpu(gpu_context("gpu")?, setup, log),
             RendererArg::Project => Engine::project(gpu_context("project")?, setup, log),
+            RendererArg::ShearWarp => Ok(Engine::ShearWarp(Box::new(super::shear_warp::engine(
+                setup, log,
+            )?))),
             RendererArg::Auto => {
                 if !gpu_method {
                     log(format!(
@@ -152,13 +156,16 @@ impl Engine {
             Engine::Cpu => "cpu",
             Engine::Gpu(_) => "gpu",
             Engine::Project(_) => "project",
+            Engine::ShearWarp(_) => "shear-warp",
         }
     }
 
     /// The device the frames run on.
     pub fn adapter(&self) -> String {
         match self {
-            Engine::Cpu => format!("cpu (rayon), {} threads", rayon::current_num_threads()),
+            Engine::Cpu | Engine::ShearWarp(_) => {
+                format!("cpu (rayon), {} threads", rayon::current_num_threads())
+            }
             Engine::Gpu(gpu) => gpu.ctx.adapter_name(),
             Engine::Project(p) => p.ctx.adapter_name(),
         }
@@ -167,7 +174,7 @@ impl Engine {
     /// Whether frame times come from GPU timestamp queries.
     pub fn gpu_timestamps(&self) -> bool {
         match self {
-            Engine::Cpu => false,
+            Engine::Cpu | Engine::ShearWarp(_) => false,
             Engine::Gpu(gpu) => gpu.ctx.timestamps,
             Engine::Project(p) => p.ctx.timestamps,
         }
@@ -183,6 +190,9 @@ impl Engine {
         progress: Option<&(dyn Fn(usize, usize) + Sync)>,
     ) -> anyhow::Result<Frame> {
         match self {
+            Engine::ShearWarp(sw) => {
+                super::shear_warp::render(sw, camera, walk.early_termination, (width, height))
+            }
             Engine::Cpu => {
                 let options = RenderOptions {
                     width,

@@ -46,6 +46,18 @@ pub(crate) struct RawGrid {
     pub global_ids: Option<String>,
     /// Pieces, welding and ghost cells, for the load report.
     pub pieces: PieceCounts,
+    /// A single-piece ImageData / STRUCTURED_POINTS: its index space.
+    pub image: Option<ImageGeometry>,
+}
+
+/// Where the points of an image lie: point `(i, j, k)` (from 0) at
+/// `origin + direction * ((i, j, k) * spacing)`, `direction` row-major.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct ImageGeometry {
+    pub dims: [usize; 3],
+    pub origin: [f64; 3],
+    pub spacing: [f64; 3],
+    pub direction: [f64; 9],
 }
 
 /// Checks what the reader can see, splits the cells and builds the mesh.
@@ -233,7 +245,11 @@ fn finite_points(xyz: &[f64], section: &str, file: &str) -> Result<Vec<Vec3>, Vt
 
 /// One value per tuple: the value itself, or the Euclidean norm of a
 /// multi-component tuple (named `<name>_magnitude`). Checks the count.
-fn per_tuple(array: &RawArray, tuples: usize, file: &str) -> Result<(String, Vec<f64>), VtkError> {
+pub(crate) fn per_tuple(
+    array: &RawArray,
+    tuples: usize,
+    file: &str,
+) -> Result<(String, Vec<f64>), VtkError> {
     let k = array.components.max(1);
     if array.values.len() != tuples.saturating_mul(k) {
         return Err(VtkError::CountMismatch {
@@ -263,7 +279,7 @@ fn per_tuple(array: &RawArray, tuples: usize, file: &str) -> Result<(String, Vec
     Ok((format!("{}_magnitude", array.name), norms))
 }
 
-fn to_f32(values: &[f64], section: &str, file: &str) -> Result<Vec<f32>, VtkError> {
+pub(crate) fn to_f32(values: &[f64], section: &str, file: &str) -> Result<Vec<f32>, VtkError> {
     let mut out = Vec::with_capacity(values.len());
     for (i, &v) in values.iter().enumerate() {
         let x = v as f32;

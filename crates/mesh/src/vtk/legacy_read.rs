@@ -67,6 +67,15 @@ struct Parser<'a> {
 
 /// Parses a legacy VTK file held in memory; `name` is used in messages.
 pub(crate) fn read(bytes: &[u8], name: &str) -> Result<VtkRead, VtkError> {
+    let grid = finish_grid(read_raw(bytes, name)?, name)?;
+    if grid.dataset != "UnstructuredGrid" {
+        super::collection::require_volume(&grid, name, "")?;
+    }
+    assemble(grid, name)
+}
+
+/// The raw grid of a legacy VTK file, before ghost cells and assembly.
+pub(crate) fn read_raw(bytes: &[u8], name: &str) -> Result<RawGrid, VtkError> {
     let mut p = Parser {
         cur: Cursor::new(bytes, name),
         grid: RawGrid::default(),
@@ -109,11 +118,7 @@ pub(crate) fn read(bytes: &[u8], name: &str) -> Result<VtkRead, VtkError> {
     if let Some(s) = &structured {
         s.finish(&mut p.grid, name)?;
     }
-    let grid = finish_grid(p.grid, name)?;
-    if grid.dataset != "UnstructuredGrid" {
-        super::collection::require_volume(&grid, name, "")?;
-    }
-    assemble(grid, name)
+    Ok(p.grid)
 }
 
 impl Parser<'_> {

@@ -10,7 +10,7 @@
 //! Cells come from the dimensions (`structured_grid.rs`); POINT_DATA holds
 //! `nx ny nz` tuples and CELL_DATA one per cell.
 
-use super::assemble::RawGrid;
+use super::assemble::{ImageGeometry, RawGrid};
 use super::legacy_lex::Cursor;
 use super::numeric::Scalar;
 use super::structured_grid::{
@@ -135,6 +135,12 @@ impl Structured {
                 let origin = self.origin.unwrap_or([0.; 3]);
                 let spacing = self.spacing.unwrap_or([1.; 3]);
                 grid.points = image_points(&extent, origin, spacing, identity);
+                grid.image = Some(ImageGeometry {
+                    dims,
+                    origin,
+                    spacing,
+                    direction: identity,
+                });
                 grid.points_section = format!("line {line}, DIMENSIONS/ORIGIN/SPACING");
             }
             Kind::RectilinearGrid => {

@@ -31,6 +31,7 @@ mod assemble;
 mod cells;
 mod collection;
 mod error;
+mod image_grid;
 mod legacy_lex;
 mod legacy_read;
 mod legacy_structured;
@@ -51,6 +52,7 @@ use std::path::Path;
 pub(crate) use assemble::{assemble, RawArray, RawGrid};
 
 pub use error::VtkError;
+pub use image_grid::{read_image_grid, ImageGrid};
 pub use legacy_write::write_legacy;
 pub use vtu_stream::{write_vtu_streamed, TetChunks, VtuIndex, VtuStreamOptions};
 pub use vtu_write::{write_vtu, write_vtu_with, VtuOptions};

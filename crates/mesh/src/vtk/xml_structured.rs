@@ -4,7 +4,7 @@
 //! Each Piece covers its own `Extent` (inclusive point index ranges within
 //! `WholeExtent`); several Pieces are welded on their shared faces.
 
-use super::assemble::RawGrid;
+use super::assemble::{ImageGeometry, RawGrid};
 use super::pieces::weld;
 use super::structured_grid::{
     add_cells, cell_count, extent_dims, image_points, parse_extent, point_count, rectilinear_points,
@@ -71,7 +71,14 @@ pub(crate) fn read_raw(doc: &mut VtuDoc<'_>, file: &str) -> Result<RawGrid, VtkE
             ("StructuredGrid", _) => read_points(&decoder, piece, k, &mut grid)?,
             ("RectilinearGrid", _) => grid.points = coordinates(&decoder, piece, k, dims)?,
             (_, Some(frame)) => {
-                grid.points = image_points(extent, frame.origin, frame.spacing, frame.direction)
+                grid.points = image_points(extent, frame.origin, frame.spacing, frame.direction);
+                let start = [0, 1, 2].map(|a| grid.points[a]);
+                grid.image = Some(ImageGeometry {
+                    dims,
+                    origin: start,
+                    spacing: frame.spacing,
+                    direction: frame.direction,
+                });
             }
             _ => {}
         }
