@@ -5,6 +5,7 @@ mod bench;
 mod compare;
 mod datasets;
 mod generate;
+mod generate_grid;
 mod info;
 mod psi;
 mod render;
