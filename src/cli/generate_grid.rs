@@ -17,7 +17,7 @@ use serde::Serialize;
 #[derive(Debug, Clone, Args)]
 pub struct GridArgs {
     /// Points along x, y and z (each at least 2).
-    #[arg(long, value_name = "NX,NY,NZ", value_delimiter = ',', num_args = 3, default_values_t = [64usize, 64, 64])]
+    #[arg(long, value_name = "NX,NY,NZ", value_delimiter = ',', default_values_t = [64usize, 64, 64])]
     pub dims: Vec<usize>,
     /// Output file (.vti).
     #[arg(short, long, value_name = "FILE")]
