@@ -203,6 +203,9 @@ pub enum RendererArg {
     /// Cell projection: projected tetrahedra on wgpu render pipelines,
     /// composited in the order of --sort (same adapter choice as gpu).
     Project,
+    /// Shear-warp with pre-integrated slabs, for uniform grids (.vti,
+    /// STRUCTURED_POINTS); `--integrator riemann` post-classifies.
+    ShearWarp,
 }
 
 /// The renderer and its walk limits.

@@ -143,7 +143,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     let deviations: Vec<f64> = times_ms.iter().map(|t| (t - median).abs()).collect();
     let threads = rayon::current_num_threads();
     let frames = f64::from(args.frames);
-    let tets = setup.scene.tet_count();
+    let tets = setup.tet_count();
     let json = BenchJson {
         renderer: engine.name(),
         adapter: engine.adapter(),
@@ -155,7 +155,10 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         threads,
         mesh: setup.mesh_name.clone(),
         tets,
-        boundary_faces: setup.scene.topology.boundary_faces.len(),
+        boundary_faces: setup
+            .scene
+            .as_ref()
+            .map_or(0, |s| s.topology.boundary_faces.len()),
         size: format!("{}x{}", args.size.0, args.size.1),
         width: args.size.0,
         height: args.size.1,

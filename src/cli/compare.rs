@@ -48,7 +48,8 @@ pub struct CompareArgs {
     #[arg(long, value_name = "R,G,B", value_parser = parse_rgb, default_value = "0,0,0", allow_hyphen_values = true)]
     pub background: Vec3,
     /// What to compare with the reference, comma separated, each
-    /// RENDERER[:INTEGRATOR][:SORT]: renderer cpu, gpu or project; the
+    /// RENDERER[:INTEGRATOR][:SORT]: renderer cpu, gpu, project or
+    /// shear-warp (uniform grids; `shear-warp:riemann` post-classifies); the
     /// integrator defaults to --integrator; the sort (project only)
     /// centroid, mpvo or mpvonc (default mpvonc).
     #[arg(
@@ -82,9 +83,10 @@ pub fn parse_spec(text: &str) -> Result<MethodSpec, String> {
         Some("cpu") => RendererArg::Cpu,
         Some("gpu") => RendererArg::Gpu,
         Some("project") => RendererArg::Project,
+        Some("shear-warp") => RendererArg::ShearWarp,
         _ => {
             return Err(format!(
-                "{text:?}: the renderer must be cpu, gpu or project"
+                "{text:?}: the renderer must be cpu, gpu, project or shear-warp"
             ))
         }
     };
@@ -145,11 +147,7 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<()> {
         .iter()
         .map(|spec| render_method(&mut setup, spec, args, &walk, &log))
         .collect::<anyhow::Result<Vec<_>>>()?;
-    let title = format!(
-        "{} ({} tetrahedra)",
-        setup.mesh_name,
-        setup.scene.tet_count()
-    );
+    let title = format!("{} ({} tetrahedra)", setup.mesh_name, setup.tet_count());
     let report = tetray_compare::compare(&title, reference, methods)?;
     let written = report.write(&args.output, args.background)?;
     print!("{}", report.markdown());
@@ -186,6 +184,10 @@ fn render_method(
             format!("project {method} {} vertex-tf", walk.sort)
         }
         RendererArg::Project => format!("project {method} {}", walk.sort),
+        RendererArg::ShearWarp => format!(
+            "shear-warp {}",
+            super::shear_warp::classification(method).name()
+        ),
         _ => format!("{} {method}", engine.name()),
     };
     let render = || {
@@ -193,7 +195,7 @@ fn render_method(
             .render(setup, &setup.camera, &walk, args.size, None)
             .with_context(|| format!("{label}: rendering"))
     };
-    if !matches!(engine, Engine::Cpu) {
+    if !matches!(engine, Engine::Cpu | Engine::ShearWarp(_)) {
         render()?;
     }
     let mut frames: Vec<Frame> = (0..args.frames)
@@ -215,7 +217,7 @@ fn render_method(
         adaptive_tf: frame.stats.project.map(|p| p.adaptive_tf),
         speed: tetray_compare::Speed {
             ms_per_frame: seconds * 1e3,
-            tets_per_s: setup.scene.tet_count() as f64 / seconds,
+            tets_per_s: setup.tet_count() as f64 / seconds,
             segments_per_s: frame.stats.segments as f64 / seconds,
         },
         image: frame.image,
@@ -239,6 +241,10 @@ mod tests {
         );
         assert!(parse_spec("gpu:mpvo").is_err(), "a sort is for project");
         assert!(parse_spec("auto").is_err());
+        assert_eq!(
+            parse_spec("shear-warp:riemann").unwrap().renderer,
+            RendererArg::ShearWarp
+        );
         assert!(parse_spec("cpu:simpson").unwrap_err().contains("neither"));
         assert!(parse_spec("cpu:ppi:exact").is_err());
     }

@@ -31,6 +31,9 @@ pub enum GenerateCommand {
     /// A thick torus shell (nonconvex, genus 1 boundaries) with the analytic
     /// point scalars "wave" and "linear", written as .vtu.
     Solid(SolidArgs),
+    /// A uniform grid over [-1, 1]^3 with the analytic point scalar "bump",
+    /// written as .vti (for --renderer shear-warp and the tetrahedral ones).
+    Grid(super::generate_grid::GridArgs),
 }
 
 /// The NASA datasets of the repository's data folder.
@@ -159,6 +162,7 @@ pub fn run(args: &GenerateArgs) -> anyhow::Result<()> {
     match &args.what {
         GenerateCommand::Plot3d(args) => plot3d(args),
         GenerateCommand::Solid(args) => solid(args),
+        GenerateCommand::Grid(args) => super::generate_grid::grid(args),
     }
 }
 

@@ -5,12 +5,14 @@ mod bench;
 mod compare;
 mod datasets;
 mod generate;
+mod generate_grid;
 mod info;
 mod psi;
 mod render;
 mod renderer;
 mod scene;
 mod segment;
+mod shear_warp;
 mod study;
 mod view;
 

@@ -16,6 +16,7 @@ pub enum Engine {
     Cpu,
     Gpu(Box<GpuEngine>),
     Project(Box<ProjectEngine>),
+    ShearWarp(Box<tetray_shearwarp::ShearWarp>),
 }
 
 /// The cell projection with the mesh and integrator uploaded.
@@ -78,6 +79,9 @@ impl Engine {
             RendererArg::Cpu => Ok(Engine::Cpu),
             RendererArg::Gpu => Engine::gpu(gpu_context("gpu")?, setup, log),
             RendererArg::Project => Engine::project(gpu_context("project")?, setup, log),
+            RendererArg::ShearWarp => Ok(Engine::ShearWarp(Box::new(super::shear_warp::engine(
+                setup, log,
+            )?))),
             RendererArg::Auto => {
                 if !gpu_method {
                     log(format!(
@@ -108,7 +112,7 @@ impl Engine {
     fn gpu(ctx: GpuContext, setup: &Setup, log: &dyn Fn(String)) -> anyhow::Result<Engine> {
         log(format!("renderer: gpu on {}", ctx.adapter_name()));
         let raycaster = GpuRaycaster::new(&ctx).context("compiling the GPU kernel")?;
-        let scene = GpuScene::new(&ctx, &setup.scene).context("uploading the mesh to the GPU")?;
+        let scene = GpuScene::new(&ctx, setup.scene()?).context("uploading the mesh to the GPU")?;
         let integrator = GpuIntegrator::new(&ctx, &setup.integrator)
             .context("uploading the transfer function to the GPU")?;
         log(format!(
@@ -128,7 +132,7 @@ impl Engine {
     fn project(ctx: GpuContext, setup: &Setup, log: &dyn Fn(String)) -> anyhow::Result<Engine> {
         let integrator = GpuIntegrator::new(&ctx, &setup.integrator)
             .context("uploading the transfer function to the GPU")?;
-        let projection = Projection::new(&ctx, &setup.scene, &integrator)
+        let projection = Projection::new(&ctx, setup.scene()?, &integrator)
             .context("preparing the mesh for projection")?;
         log(format!(
             "renderer: project on {} into {:?} ({} tetrahedra, {:.1} MB; adaptive sampling \
@@ -152,13 +156,16 @@ impl Engine {
             Engine::Cpu => "cpu",
             Engine::Gpu(_) => "gpu",
             Engine::Project(_) => "project",
+            Engine::ShearWarp(_) => "shear-warp",
         }
     }
 
     /// The device the frames run on.
     pub fn adapter(&self) -> String {
         match self {
-            Engine::Cpu => format!("cpu (rayon), {} threads", rayon::current_num_threads()),
+            Engine::Cpu | Engine::ShearWarp(_) => {
+                format!("cpu (rayon), {} threads", rayon::current_num_threads())
+            }
             Engine::Gpu(gpu) => gpu.ctx.adapter_name(),
             Engine::Project(p) => p.ctx.adapter_name(),
         }
@@ -167,7 +174,7 @@ impl Engine {
     /// Whether frame times come from GPU timestamp queries.
     pub fn gpu_timestamps(&self) -> bool {
         match self {
-            Engine::Cpu => false,
+            Engine::Cpu | Engine::ShearWarp(_) => false,
             Engine::Gpu(gpu) => gpu.ctx.timestamps,
             Engine::Project(p) => p.ctx.timestamps,
         }
@@ -183,6 +190,9 @@ impl Engine {
         progress: Option<&(dyn Fn(usize, usize) + Sync)>,
     ) -> anyhow::Result<Frame> {
         match self {
+            Engine::ShearWarp(sw) => {
+                super::shear_warp::render(sw, camera, walk.early_termination, (width, height))
+            }
             Engine::Cpu => {
                 let options = RenderOptions {
                     width,
@@ -193,7 +203,7 @@ impl Engine {
                     threads: None,
                 };
                 let out = render_scalar_with_progress(
-                    &setup.scene,
+                    setup.scene()?,
                     camera,
                     &setup.integrator,
                     &options,

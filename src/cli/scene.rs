@@ -1,6 +1,8 @@
 //! From command-line options to what the renderers need: the loaded mesh,
 //! the scene (topology, boundary BVH, active scalar), the integrator and the
-//! camera. Shared by `render` and `bench`; `info` uses the loader only.
+//! camera. Shared by `render`, `bench` and `compare`; `info` uses the loader
+//! only. With `--renderer shear-warp` the file is read as its regular grid
+//! alone instead (`shear_warp::prepare_grid`).
 
 use std::time::{Duration, Instant};
 
@@ -12,7 +14,7 @@ use tetray_integrate::{
 use tetray_mesh::{default_field, mean_tet_chord, value_range, LoadedMesh, ScalarField};
 use tetray_raycast::{relative_to_origin, Camera, Scene};
 
-use super::args::{CameraArgs, IntegratorArgs, MeshArgs, WalkArgs};
+use super::args::{CameraArgs, IntegratorArgs, MeshArgs, RendererArg, WalkArgs};
 
 /// The embedded default dataset: NASA's Blunt Fin, PLOT3D big-endian.
 const BLUNT_FIN_XYZ: &[u8] = include_bytes!("../../data/plot3d/bluntfinxyz.bin");
@@ -138,7 +140,16 @@ pub fn load_mesh(args: &MeshArgs) -> anyhow::Result<MeshInput> {
 /// Everything a frame needs, and how long each part took to make.
 pub struct Setup {
     pub mesh_name: String,
-    pub scene: Scene,
+    /// The tetrahedra, their topology, boundary BVH and active field;
+    /// `None` when only shear-warp renders (the file read as its regular
+    /// grid alone, see `shear_warp::prepare_grid`).
+    pub scene: Option<Scene>,
+    /// The file as its regular grid (points relative to `origin`), when only
+    /// shear-warp renders.
+    pub grid: Option<tetray_shearwarp::RegularGrid>,
+    /// The file's coordinates are `origin + point` (see
+    /// [`tetray_mesh::centring_origin`]).
+    pub origin: DVec3,
     pub camera: Camera,
     pub integrator: ScalarIntegrator,
     pub method: Method,
@@ -152,6 +163,18 @@ pub struct Setup {
 }
 
 impl Setup {
+    /// The tetrahedral scene, which every renderer but shear-warp needs.
+    pub fn scene(&self) -> anyhow::Result<&Scene> {
+        self.scene.as_ref().context(
+            "the file was read as a regular grid only (for --renderer shear-warp): no tetrahedra",
+        )
+    }
+
+    /// Tetrahedra in the scene (0 for a regular grid read alone).
+    pub fn tet_count(&self) -> usize {
+        self.scene.as_ref().map_or(0, Scene::tet_count)
+    }
+
     /// Switches to `method` with the same transfer function and options.
     pub fn use_method(&mut self, method: Method) -> anyhow::Result<()> {
         if method != self.method {
@@ -165,6 +188,7 @@ impl Setup {
 }
 
 /// What [`prepare`] makes a frame of.
+#[derive(Clone, Copy)]
 pub struct FrameArgs<'a> {
     pub mesh: &'a MeshArgs,
     pub integrator: &'a IntegratorArgs,
@@ -192,6 +216,9 @@ pub fn prepare(frame: FrameArgs<'_>, log: &dyn Fn(String)) -> anyhow::Result<Set
         ),
         None => None,
     };
+    if walk.renderer == RendererArg::ShearWarp {
+        return super::shear_warp::prepare_grid(frame, tf_text.as_deref(), log);
+    }
     let input = load_mesh(mesh_args)?;
     log(input.describe());
     if let Some(changes) = input.loaded.report.changes() {
@@ -241,7 +268,47 @@ pub fn prepare(frame: FrameArgs<'_>, log: &dyn Fn(String)) -> anyhow::Result<Set
 
     let (lo, hi) = value_range(&scene.scalar);
     let unit_distance = args.unit_distance.unwrap_or(paraview_u);
-    let tf = match (&args.tf, &tf_text) {
+    let tf = transfer_function(
+        args,
+        tf_text.as_deref(),
+        &field,
+        (lo, hi),
+        scene.bounds(),
+        unit_distance,
+    )?;
+    let chord = mean_tet_chord(&scene.mesh);
+    let options = integrator_options(args, unit_distance, chord, (lo, hi));
+    let (integrator, integrator_time) = integrator(args, &tf, &options, &field, log)?;
+    Ok(Setup {
+        mesh_name: name,
+        scene: Some(scene),
+        grid: None,
+        origin,
+        camera,
+        integrator,
+        method: args.integrator,
+        tf,
+        integrator_options: options,
+        unit_distance,
+        load_time,
+        scene_time,
+        integrator_time,
+    })
+}
+
+/// The transfer function: the `--tf` file (`tf_text`, rescaled to the
+/// field's range `(lo, hi)` unless `--no-rescale`), a uniform volume for a
+/// constant field (whose opacity lets 30% of the light through the
+/// `bounds` diagonal), else the default ramp over the range.
+pub(super) fn transfer_function(
+    args: &IntegratorArgs,
+    tf_text: Option<&str>,
+    field: &str,
+    (lo, hi): (f32, f32),
+    bounds: (Vec3, Vec3),
+    unit_distance: f32,
+) -> anyhow::Result<TransferFunction> {
+    Ok(match (&args.tf, tf_text) {
         (Some(path), Some(text)) => {
             let rescale = (!args.no_rescale).then_some((lo, hi));
             TransferFunction::from_paraview_json(text, args.tf_name.as_deref(), rescale)
@@ -250,7 +317,7 @@ pub fn prepare(frame: FrameArgs<'_>, log: &dyn Fn(String)) -> anyhow::Result<Set
         // A constant field (the Oxygen Post's density is 1 everywhere) would
         // get no opacity from the default ramp: an empty image.
         _ if lo == hi => {
-            let (lo_b, hi_b) = scene.bounds();
+            let (lo_b, hi_b) = bounds;
             let unit_lengths = (hi_b - lo_b).length() / unit_distance;
             let alpha = solid_alpha(unit_lengths);
             if field != SOLID {
@@ -263,9 +330,18 @@ pub fn prepare(frame: FrameArgs<'_>, log: &dyn Fn(String)) -> anyhow::Result<Set
             solid_color(lo, alpha)
         }
         _ => TransferFunction::default_for_range(lo, hi),
-    };
-    let chord = mean_tet_chord(&scene.mesh);
-    let options = IntegratorOptions {
+    })
+}
+
+/// The integrator's options; `chord` is the typical segment (a
+/// tetrahedron's mean chord).
+pub(super) fn integrator_options(
+    args: &IntegratorArgs,
+    unit_distance: f32,
+    chord: f32,
+    (lo, hi): (f32, f32),
+) -> IntegratorOptions {
+    IntegratorOptions {
         unit_distance,
         opacity_mode: args.opacity_mode.into(),
         psi_table_size: args.psi_size,
@@ -277,9 +353,19 @@ pub fn prepare(frame: FrameArgs<'_>, log: &dyn Fn(String)) -> anyhow::Result<Set
         scalar_range: Some((lo, hi)),
         split_at_knots: !args.no_knot_split,
         ..IntegratorOptions::default()
-    };
+    }
+}
+
+/// The `--integrator` of `tf` and `options`, logged, and its setup time.
+pub(super) fn integrator(
+    args: &IntegratorArgs,
+    tf: &TransferFunction,
+    options: &IntegratorOptions,
+    field: &str,
+    log: &dyn Fn(String),
+) -> anyhow::Result<(ScalarIntegrator, Duration)> {
     let method = args.integrator;
-    let integrator = ScalarIntegrator::new(method, &tf, &options)
+    let integrator = ScalarIntegrator::new(method, tf, options)
         .with_context(|| format!("setting up the {method} integrator"))?;
     let integrator_time = integrator.setup_time();
     let source = if args.unit_distance.is_some() {
@@ -287,30 +373,20 @@ pub fn prepare(frame: FrameArgs<'_>, log: &dyn Fn(String)) -> anyhow::Result<Set
     } else {
         "ParaView's default"
     };
+    let (lo, hi) = options.scalar_range.unwrap_or((0.0, 0.0));
     log(format!(
-        "integrator {method}{}: {field} in [{lo}, {hi}], unit distance {unit_distance} ({source}), \
+        "integrator {method}{}: {field} in [{lo}, {hi}], unit distance {} ({source}), \
          opacity mode {}, set up in {:.3} s",
-        table_note(&integrator, &options),
+        table_note(&integrator, options),
+        options.unit_distance,
         args.opacity_mode.name(),
         integrator_time.as_secs_f64()
     ));
-    Ok(Setup {
-        mesh_name: name,
-        scene,
-        camera,
-        integrator,
-        method,
-        tf,
-        integrator_options: options,
-        unit_distance,
-        load_time,
-        scene_time,
-        integrator_time,
-    })
+    Ok((integrator, integrator_time))
 }
 
 /// The name of the field added to a mesh without fields.
-const SOLID: &str = "solid";
+pub(super) const SOLID: &str = "solid";
 
 /// The field to render: the one named, else the first that is not constant
 /// (see [`default_field`]); `None` for a mesh without fields.
@@ -382,7 +458,7 @@ fn table_note(integrator: &ScalarIntegrator, options: &IntegratorOptions) -> Str
 /// camera flag is given) and OrthogonalizeViewUp. A
 /// given position and focal point are in the file's coordinates: the
 /// mesh's `origin` is subtracted (in f64).
-fn build_camera(
+pub(super) fn build_camera(
     args: &CameraArgs,
     (lo, hi): (Vec3, Vec3),
     (width, height): (u32, u32),
@@ -428,7 +504,7 @@ fn build_camera(
 
 /// Warns when rays start inside the mesh bounds (the renderer integrates
 /// from the eye, which is rarely what was meant).
-fn warn_if_inside(camera: &Camera, (lo, hi): (Vec3, Vec3)) {
+pub(super) fn warn_if_inside(camera: &Camera, (lo, hi): (Vec3, Vec3)) {
     if camera.is_inside_bounds(lo, hi) {
         let p = camera.position;
         eprintln!(

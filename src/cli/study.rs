@@ -9,6 +9,7 @@ use clap::{Args, ValueEnum};
 use tetray_integrate::Method;
 use tetray_study::accuracy::{self, AccuracyOptions};
 use tetray_study::psi_study::{self, PsiOptions};
+use tetray_study::sampling::{self, SamplingOptions};
 use tetray_study::smoothness::{self, SmoothnessOptions};
 use tetray_study::speed::{self, SpeedOptions};
 use tetray_study::{Check, OutputDir};
@@ -30,6 +31,10 @@ pub enum StudyName {
     /// Frame rates per renderer and method on the datasets, against image
     /// size and mesh size (tables 6.3, 6.4, fig. 6.3).
     Speed,
+    /// Shear-warp on regular grids: error against the exact ray caster
+    /// over the slice distance, pre-integrated vs post-classified, on a
+    /// high-frequency transfer function (Schulze et al. 2003).
+    Shearwarp,
     /// Every study, each in its own subfolder.
     All,
 }
@@ -108,6 +113,7 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
             StudyName::Accuracy,
             StudyName::Smoothness,
             StudyName::Speed,
+            StudyName::Shearwarp,
         ],
         _ => std::slice::from_ref(&args.name),
     };
@@ -158,6 +164,7 @@ fn study_name(name: StudyName) -> &'static str {
         StudyName::Accuracy => "accuracy",
         StudyName::Smoothness => "smoothness",
         StudyName::Speed => "speed",
+        StudyName::Shearwarp => "shearwarp",
         StudyName::All => "all",
     }
 }
@@ -270,6 +277,20 @@ fn run_one(
             }
             for note in &s.notes {
                 println!("  note: {note}");
+            }
+            s.checks
+        }
+        StudyName::Shearwarp => {
+            let s = sampling::run(&SamplingOptions::default(), &mut out, &log)?;
+            for r in &s.rows {
+                println!(
+                    "  {:>3}^3  slice distance {:.4}  {:<16} mean error {:.2e}  max {:.2e}",
+                    r.points_per_axis,
+                    r.slice_distance,
+                    r.classification,
+                    r.mean_error,
+                    r.max_error
+                );
             }
             s.checks
         }

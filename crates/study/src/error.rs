@@ -25,6 +25,8 @@ pub enum StudyError {
     #[error(transparent)]
     Integrate(#[from] tetray_integrate::IntegrateError),
     #[error(transparent)]
+    ShearWarp(#[from] tetray_shearwarp::ShearWarpError),
+    #[error(transparent)]
     Mesh(#[from] tetray_mesh::MeshError),
     #[error(transparent)]
     Load(#[from] tetray_io::IoError),

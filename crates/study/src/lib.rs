@@ -7,6 +7,7 @@
 //! | [`psi_study`] | Psi over its domain; table error, nearest and bilinear, both node spacings; cumulative error through 100 cells | figs. 5.3, 5.4 |
 //! | [`accuracy`] | per-segment error of every method against the f64 reference of its model, on the CPU and through the GPU kernel | figs. 6.5-6.11 |
 //! | [`smoothness`] | intensity across a slab of constant thickness, and its centre-surround response (Mach bands) | figs. 6.12-6.19 |
+//! | [`sampling`] | shear-warp on regular grids: error against the exact ray caster over the slice distance, pre-integrated vs post-classified, on a high-frequency transfer function | Schulze et al. 2003, sec. 2.3-2.4 |
 //! | [`speed`] | frames/s, tets/s, segments/s per renderer and method on the datasets; resolution and mesh-size sweeps | tables 6.3, 6.4, fig. 6.3 |
 
 pub mod accuracy;
@@ -14,6 +15,7 @@ mod error;
 pub mod gpu_segments;
 pub mod output;
 pub mod psi_study;
+pub mod sampling;
 pub mod smoothness;
 pub mod speed;
 pub mod svg;

@@ -13,9 +13,13 @@
 //! structured datasets, writer), `xml` (serial XML:
 //! the XML tree, the one DataArray decoder, `.vtu` and `.vts`/`.vtr`/`.vti`
 //! grids, writers), `collection` (parallel `.pvt*` and multi-block `.vtm`).
+//! [`read_image_grid`] (`image_grid.rs`) reads a `.vti` or STRUCTURED_POINTS
+//! file as the regular grid it is (for shear-warp): the same parsing,
+//! stopped before the cells are assembled.
 
 mod collection;
 mod error;
+mod image_grid;
 mod legacy;
 mod numeric;
 mod xml;
@@ -23,6 +27,7 @@ mod xml;
 use std::path::Path;
 
 pub use error::VtkError;
+pub use image_grid::{read_image_grid, ImageGrid};
 pub use legacy::write::write_legacy;
 pub use xml::stream::{write_vtu_streamed, TetChunks, VtuIndex, VtuStreamOptions};
 pub use xml::write::{write_vtu, write_vtu_with, VtuOptions};

@@ -427,7 +427,7 @@ fn check_tuples(array: &CellArray, tuples: usize, file: &str) -> Result<(), Cell
 
 /// One value per tuple: the value itself, or the Euclidean norm of a
 /// multi-component tuple (named `<name>_magnitude`). Checks the count.
-fn per_tuple(
+pub fn per_tuple(
     array: &CellArray,
     tuples: usize,
     file: &str,
@@ -453,7 +453,9 @@ fn per_tuple(
     Ok((format!("{}_magnitude", array.name), norms))
 }
 
-fn to_f32(values: &[f64], section: &str, file: &str) -> Result<Vec<f32>, CellError> {
+/// The values as f32; NaN, infinities and values beyond f32's range are
+/// errors naming `section` and the value's index.
+pub fn to_f32(values: &[f64], section: &str, file: &str) -> Result<Vec<f32>, CellError> {
     let mut out = Vec::with_capacity(values.len());
     for (i, &v) in values.iter().enumerate() {
         let x = v as f32;

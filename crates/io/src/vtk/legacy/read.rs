@@ -11,6 +11,7 @@
 
 use super::lex::{decode_name, Cursor};
 use super::structured::{Kind, Structured};
+use crate::vtk::image_grid::ImageGeometry;
 use crate::vtk::numeric::Scalar;
 use crate::vtk::{ReadOptions, VtkError, VtkRead};
 use tetray_mesh::cells::finish_grid;
@@ -67,6 +68,19 @@ struct Parser<'a> {
 
 /// Parses a legacy VTK file held in memory; `name` is used in messages.
 pub(crate) fn read_with(bytes: &[u8], name: &str, opts: &ReadOptions) -> Result<VtkRead, VtkError> {
+    let grid = finish_grid(read_raw(bytes, name)?.0, name)?;
+    if grid.dataset != "UnstructuredGrid" {
+        crate::vtk::collection::require_volume(&grid, name, "")?;
+    }
+    Ok(assemble_with(grid, name, opts)?)
+}
+
+/// The raw grid of a legacy VTK file, before ghost cells and assembly,
+/// and for STRUCTURED_POINTS its index space.
+pub(crate) fn read_raw(
+    bytes: &[u8],
+    name: &str,
+) -> Result<(CellGrid, Option<ImageGeometry>), VtkError> {
     let mut p = Parser {
         cur: Cursor::new(bytes, name),
         grid: CellGrid::default(),
@@ -109,11 +123,8 @@ pub(crate) fn read_with(bytes: &[u8], name: &str, opts: &ReadOptions) -> Result<
     if let Some(s) = &structured {
         s.finish(&mut p.grid, name)?;
     }
-    let grid = finish_grid(p.grid, name)?;
-    if grid.dataset != "UnstructuredGrid" {
-        crate::vtk::collection::require_volume(&grid, name, "")?;
-    }
-    Ok(assemble_with(grid, name, opts)?)
+    let image = structured.as_ref().and_then(Structured::image);
+    Ok((p.grid, image))
 }
 
 impl Parser<'_> {

@@ -11,6 +11,7 @@
 //! `nx ny nz` tuples and CELL_DATA one per cell.
 
 use super::lex::Cursor;
+use crate::vtk::image_grid::ImageGeometry;
 use crate::vtk::numeric::Scalar;
 use crate::vtk::VtkError;
 use tetray_mesh::cells::CellGrid;
@@ -108,6 +109,19 @@ impl Structured {
         })?;
         let n = point_count(dims, file, &format!("line {line}, DIMENSIONS"))?;
         Ok((n, cell_count(dims)))
+    }
+
+    /// A STRUCTURED_POINTS dataset's index space (after [`Self::finish`]).
+    pub fn image(&self) -> Option<ImageGeometry> {
+        let (Kind::StructuredPoints, Some((dims, _))) = (self.kind, self.dims) else {
+            return None;
+        };
+        Some(ImageGeometry {
+            dims,
+            origin: self.origin.unwrap_or([0.; 3]),
+            spacing: self.spacing.unwrap_or([1.; 3]),
+            direction: [1., 0., 0., 0., 1., 0., 0., 0., 1.],
+        })
     }
 
     /// Fills the grid's points (unless POINTS gave them) and cells.

@@ -14,10 +14,19 @@ use tetray_mesh::cells::{
 
 use super::read::{common_global_ids, piece_error, read_arrays, read_points, section};
 use super::tree::{find, VtuDoc, XmlPiece};
+use crate::vtk::image_grid::ImageGeometry;
 use crate::vtk::VtkError;
 
 /// The raw grid of a StructuredGrid, RectilinearGrid or ImageData document.
 pub(crate) fn read_raw(doc: &mut VtuDoc<'_>, file: &str) -> Result<CellGrid, VtkError> {
+    Ok(read_raw_image(doc, file)?.0)
+}
+
+/// [`read_raw`], and for a single-piece ImageData its index space.
+pub(crate) fn read_raw_image(
+    doc: &mut VtuDoc<'_>,
+    file: &str,
+) -> Result<(CellGrid, Option<ImageGeometry>), VtkError> {
     let dataset: &'static str = match doc.dataset.as_str() {
         "StructuredGrid" => "StructuredGrid",
         "RectilinearGrid" => "RectilinearGrid",
@@ -57,6 +66,7 @@ pub(crate) fn read_raw(doc: &mut VtuDoc<'_>, file: &str) -> Result<CellGrid, Vtk
         None
     };
     let decoder = ArrayDecoder { file, doc };
+    let mut geometry = None;
     let mut grids = Vec::with_capacity(doc.pieces.len());
     for (k, (piece, extent)) in doc.pieces.iter().zip(&extents).enumerate() {
         let dims = extent_dims(extent);
@@ -73,7 +83,14 @@ pub(crate) fn read_raw(doc: &mut VtuDoc<'_>, file: &str) -> Result<CellGrid, Vtk
             ("StructuredGrid", _) => read_points(&decoder, piece, k, &mut grid)?,
             ("RectilinearGrid", _) => grid.points = coordinates(&decoder, piece, k, dims)?,
             (_, Some(frame)) => {
-                grid.points = image_points(extent, frame.origin, frame.spacing, frame.direction)
+                grid.points = image_points(extent, frame.origin, frame.spacing, frame.direction);
+                let start = [0, 1, 2].map(|a| grid.points[a]);
+                geometry = Some(ImageGeometry {
+                    dims,
+                    origin: start,
+                    spacing: frame.spacing,
+                    direction: frame.direction,
+                });
             }
             _ => {}
         }
@@ -84,11 +101,11 @@ pub(crate) fn read_raw(doc: &mut VtuDoc<'_>, file: &str) -> Result<CellGrid, Vtk
         grids.push(grid);
     }
     if grids.len() == 1 {
-        return Ok(grids.remove(0));
+        return Ok((grids.remove(0), geometry));
     }
     let mut joined = weld(grids, file)?;
     joined.dataset = dataset;
-    Ok(joined)
+    Ok((joined, None))
 }
 
 /// The x, y and z coordinate arrays of a RectilinearGrid piece.

@@ -1,0 +1,182 @@
+//! A `.vti` (ImageData) or legacy STRUCTURED_POINTS file as the regular
+//! grid it is, for renderers of regular grids (shear-warp): the same
+//! parsing as the tetrahedral readers, stopped before the cells are split.
+
+use std::path::Path;
+
+use tetray_mesh::cells::{per_tuple, to_f32, CellGrid};
+use tetray_mesh::ScalarField;
+
+use super::VtkError;
+
+/// Where the points of an image lie: point `(i, j, k)` (from 0) at
+/// `origin + direction * ((i, j, k) * spacing)`, `direction` row-major.
+/// The readers report it beside their [`CellGrid`] for a single-piece
+/// ImageData / STRUCTURED_POINTS.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct ImageGeometry {
+    pub dims: [usize; 3],
+    pub origin: [f64; 3],
+    pub spacing: [f64; 3],
+    pub direction: [f64; 9],
+}
+
+/// An axis-aligned image: point `(i, j, k)` at `origin + (i, j, k) *
+/// spacing`, point fields in VTK order (`i` fastest).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ImageGrid {
+    pub dims: [usize; 3],
+    pub origin: [f64; 3],
+    pub spacing: [f64; 3],
+    /// One value per point; multi-component arrays as their magnitude
+    /// (`<name>_magnitude`), as the mesh readers load them.
+    pub fields: Vec<ScalarField>,
+    pub warnings: Vec<String>,
+}
+
+/// Reads a serial `.vti` file (one Piece) or a legacy `.vtk`
+/// STRUCTURED_POINTS file as an [`ImageGrid`]. Anything else (other
+/// datasets, several pieces, a rotated `Direction`, a non-positive
+/// spacing) is an error naming the file.
+pub fn read_image_grid(path: &Path) -> Result<ImageGrid, VtkError> {
+    let file = path.display().to_string();
+    let bytes = super::read_path(path)?;
+    let xml = bytes.iter().find(|b| !b.is_ascii_whitespace()) == Some(&b'<');
+    let (grid, image) = if xml {
+        let mut doc = super::xml::tree::parse(&bytes, &file)?;
+        if doc.dataset != "UnstructuredGrid" && !doc.pieces.is_empty() {
+            super::xml::structured::read_raw_image(&mut doc, &file)?
+        } else {
+            (super::xml::read::read_raw(&bytes, &file)?, None)
+        }
+    } else {
+        super::legacy::read::read_raw(&bytes, &file)?
+    };
+    image_grid(grid, image, &file)
+}
+
+fn image_grid(
+    grid: CellGrid,
+    image: Option<ImageGeometry>,
+    file: &str,
+) -> Result<ImageGrid, VtkError> {
+    let invalid = |message: String| VtkError::Invalid {
+        file: file.into(),
+        section: grid.dataset.into(),
+        message,
+    };
+    let Some(image) = image.filter(|_| grid.dataset == "ImageData") else {
+        return Err(invalid(format!(
+            "a regular grid needs a single-piece ImageData (.vti) or STRUCTURED_POINTS file, \
+             not {}",
+            if grid.dataset.is_empty() {
+                "this dataset"
+            } else {
+                grid.dataset
+            }
+        )));
+    };
+    let identity = [1., 0., 0., 0., 1., 0., 0., 0., 1.];
+    if image.direction != identity {
+        return Err(invalid(format!(
+            "Direction {:?} rotates the image: only axis-aligned images are regular grids here",
+            image.direction
+        )));
+    }
+    if image.spacing.iter().any(|&h| !(h.is_finite() && h > 0.0)) {
+        return Err(invalid(format!(
+            "spacing {:?} must be positive along every axis",
+            image.spacing
+        )));
+    }
+    let npoints = image.dims.iter().product::<usize>();
+    let mut warnings = grid.warnings;
+    let mut fields = Vec::new();
+    for array in &grid.point_arrays {
+        if array.name == "vtkGhostType" {
+            warnings.push("ghost flags ignored: the image is read whole".into());
+            continue;
+        }
+        let (name, values) = per_tuple(array, npoints, file)?;
+        fields.push(ScalarField {
+            name,
+            values: to_f32(&values, &array.section, file)?,
+        });
+    }
+    if !grid.cell_arrays.is_empty() {
+        warnings.push(format!(
+            "{} cell arrays skipped: a regular grid carries point data",
+            grid.cell_arrays.len()
+        ));
+    }
+    Ok(ImageGrid {
+        dims: image.dims,
+        origin: image.origin,
+        spacing: image.spacing,
+        fields,
+        warnings,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn write(name: &str, text: &str) -> std::path::PathBuf {
+        let dir = std::env::temp_dir().join(format!("tetray-image-grid-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join(name);
+        std::fs::write(&path, text).unwrap();
+        path
+    }
+
+    #[test]
+    fn legacy_structured_points() {
+        let path = write(
+            "a.vtk",
+            "# vtk DataFile Version 3.0\nimage\nASCII\nDATASET STRUCTURED_POINTS\n\
+             DIMENSIONS 3 2 2\nORIGIN 1 2 3\nSPACING 0.5 1 2\nPOINT_DATA 12\n\
+             SCALARS s float 1\nLOOKUP_TABLE default\n0 1 2 3 4 5 6 7 8 9 10 11\n",
+        );
+        let g = read_image_grid(&path).unwrap();
+        assert_eq!(g.dims, [3, 2, 2]);
+        assert_eq!(g.origin, [1.0, 2.0, 3.0]);
+        assert_eq!(g.spacing, [0.5, 1.0, 2.0]);
+        assert_eq!(g.fields[0].name, "s");
+        assert_eq!(g.fields[0].values[11], 11.0);
+    }
+
+    #[test]
+    fn xml_image_data_with_an_offset_extent() {
+        let path = write(
+            "b.vti",
+            r#"<?xml version="1.0"?>
+<VTKFile type="ImageData" version="0.1">
+  <ImageData WholeExtent="1 2 0 1 0 1" Origin="0 0 0" Spacing="2 1 1">
+    <Piece Extent="1 2 0 1 0 1">
+      <PointData Scalars="d">
+        <DataArray type="Float32" Name="d" format="ascii">0 1 2 3 4 5 6 7</DataArray>
+      </PointData>
+    </Piece>
+  </ImageData>
+</VTKFile>
+"#,
+        );
+        let g = read_image_grid(&path).unwrap();
+        assert_eq!(g.dims, [2, 2, 2]);
+        assert_eq!(g.origin, [2.0, 0.0, 0.0]);
+        assert_eq!(g.fields[0].values.len(), 8);
+    }
+
+    #[test]
+    fn other_datasets_are_errors() {
+        let path = write(
+            "c.vtk",
+            "# vtk DataFile Version 3.0\ngrid\nASCII\nDATASET RECTILINEAR_GRID\n\
+             DIMENSIONS 2 2 2\nX_COORDINATES 2 float\n0 1\nY_COORDINATES 2 float\n0 1\n\
+             Z_COORDINATES 2 float\n0 3\n",
+        );
+        let err = read_image_grid(&path).unwrap_err().to_string();
+        assert!(err.contains("single-piece ImageData"), "{err}");
+    }
+}
