@@ -199,7 +199,7 @@ fn on_a_convex_mesh_mpvo_meets_the_reference() {
 fn bad_method_lists_are_refused_with_one_line() {
     for (list, why) in [
         ("gpu:mpvo", "only for project"),
-        ("raster", "cpu, gpu or project"),
+        ("raster", "cpu, gpu, project or shear-warp"),
         ("cpu:simpson", "neither an integrator nor a sort"),
     ] {
         let out = run(
