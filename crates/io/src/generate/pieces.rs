@@ -14,12 +14,9 @@ use glam::Vec3;
 use rayon::prelude::*;
 use tetray_mesh::structured::templates;
 
-use super::solid::{TorusShell, FIELDS};
+use super::solid::{cell_tets, TorusShell, CHUNK_HEXES, FIELDS};
 use super::GenerateError;
 use crate::vtk::{write_vtu_streamed, TetChunks, VtuIndex, VtuStreamOptions};
-
-/// Hexahedra per chunk of streamed tetrahedra.
-const CHUNK_HEXES: usize = 1 << 14;
 
 /// One piece: the hexahedra with `iu` in `[start, end)`.
 struct Piece<'a> {
@@ -34,9 +31,11 @@ impl Piece<'_> {
         self.end - self.start + 1
     }
 
-    fn local(&self, du: usize, iv: usize, iw: usize) -> u32 {
+    /// The piece's number of the shell's point `(iu, iv, iw)`, `iu` in
+    /// `[start, end]` (unwrapped), `iv` wrapped.
+    fn local(&self, iu: usize, iv: usize, iw: usize) -> u32 {
         let nv = self.shell.cells[1];
-        (du + self.width() * ((iv % nv) + nv * iw)) as u32
+        (iu - self.start + self.width() * ((iv % nv) + nv * iw)) as u32
     }
 
     /// The piece's points, `iu` fastest, each the shell's own point (the
@@ -72,15 +71,10 @@ impl TetChunks for Piece<'_> {
         for first in (0..hexes).step_by(CHUNK_HEXES) {
             chunk.clear();
             for h in first..(first + CHUNK_HEXES).min(hexes) {
-                let (du, iv, iw) = (h % w, (h / w) % nv, h / (w * nv));
-                // The shell's parity pattern, so the pieces' split is the
-                // whole shell's.
-                let parity = (self.start + du + iv + iw) % 2;
-                chunk.extend(t[parity].map(|tet| {
-                    tet.map(|[a, b, c]| {
-                        self.local(du + a as usize, iv + b as usize, iw + c as usize)
-                    })
-                }));
+                // The shell's own split (parity included), so the pieces'
+                // tetrahedra are the whole shell's.
+                let corner = (self.start + h % w, (h / w) % nv, h / (w * nv));
+                chunk.extend(cell_tets(&t, corner, |iu, iv, iw| self.local(iu, iv, iw)));
             }
             sink(&chunk)?;
         }

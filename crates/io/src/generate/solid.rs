@@ -31,7 +31,20 @@ use tetray_mesh::structured::{templates, Templates};
 use tetray_mesh::{ScalarField, TetMesh};
 
 /// Hexahedra per chunk of streamed tetrahedra.
-const CHUNK_HEXES: usize = 1 << 14;
+pub(super) const CHUNK_HEXES: usize = 1 << 14;
+
+/// The 5 tetrahedra of the hexahedron whose first corner is point
+/// `(iu, iv, iw)` of the shell, in the shell's alternating split; each
+/// corner `(iu, iv, iw)` (unwrapped) is numbered by `index`.
+pub(super) fn cell_tets(
+    t: &Templates,
+    (iu, iv, iw): (usize, usize, usize),
+    index: impl Fn(usize, usize, usize) -> u32,
+) -> [[u32; 4]; 5] {
+    t[(iu + iv + iw) % 2].map(|tet| {
+        tet.map(|[du, dv, dw]| index(iu + du as usize, iv + dv as usize, iw + dw as usize))
+    })
+}
 
 /// A thick torus shell around the z axis, centred at the origin.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -195,10 +208,8 @@ impl TorusShell {
     /// The 5 tetrahedra of hexahedron `h` (`iu` fastest).
     fn hex_tets(&self, t: &Templates, h: usize) -> [[u32; 4]; 5] {
         let [nu, nv, _] = self.cells;
-        let (iu, iv, iw) = (h % nu, (h / nu) % nv, h / (nu * nv));
-        t[(iu + iv + iw) % 2].map(|tet| {
-            tet.map(|[du, dv, dw]| self.index(iu + du as usize, iv + dv as usize, iw + dw as usize))
-        })
+        let corner = (h % nu, (h / nu) % nv, h / (nu * nv));
+        cell_tets(t, corner, |iu, iv, iw| self.index(iu, iv, iw))
     }
 
     /// The whole mesh in memory (for tests and small sizes; large ones are
