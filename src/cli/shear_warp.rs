@@ -25,11 +25,7 @@ use super::scene::{self, FrameArgs, Setup, EMBEDDED_NAME, SOLID};
 
 /// The classification `--integrator` asks of shear-warp.
 pub fn classification(method: Method) -> Classification {
-    if method == Method::Riemann {
-        Classification::PostClassified
-    } else {
-        Classification::PreIntegrated
-    }
+    Classification::for_method(method)
 }
 
 /// Reads the file of `frame` as its regular grid alone (no tetrahedra, no

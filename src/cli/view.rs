@@ -1,13 +1,14 @@
 //! `tetray view`: the interactive viewer (crates/viewer) on a mesh or the
 //! embedded dataset.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 use anyhow::Context;
 use clap::Args;
+use glam::DVec3;
 use tetray_integrate::{Method, TransferFunction};
-use tetray_viewer::{Dataset, ViewerOptions};
+use tetray_viewer::{Dataset, GridVolume, ViewerOptions};
 
 use super::args::{parse_method, parse_positive, MeshArgs, OpacityModeArg};
 use super::scene::load_mesh;
@@ -95,8 +96,51 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
         budget: Duration::from_millis(u64::from(args.budget_ms)),
         early_termination: args.early_termination,
     };
-    let dataset = Dataset::from_loaded(input.name, input.loaded);
+    let origin = input.loaded.origin();
+    let mut dataset = Dataset::from_loaded(input.name, input.loaded);
+    if let Some(grid) = args.mesh.mesh.as_deref().and_then(|p| image_grid(p, origin)) {
+        dataset = dataset.with_grid(grid);
+        println!("image data: the shear-warp renderer is available in the Renderer menu");
+    }
     tetray_viewer::run(dataset, options)
+}
+
+/// The file's regular grid, in the mesh's coordinates (relative to
+/// `origin`), when it is image data: `.vti`, or a legacy `.vtk` whose
+/// header names STRUCTURED_POINTS. Anything else is no grid, and a grid
+/// that fails to read is a warning (the tetrahedra still render).
+fn image_grid(path: &Path, origin: DVec3) -> Option<GridVolume> {
+    let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+    let image_data = match ext.as_str() {
+        "vti" => true,
+        "vtk" => {
+            let mut head = vec![0u8; 1024];
+            let n = std::fs::File::open(path)
+                .and_then(|mut f| std::io::Read::read(&mut f, &mut head))
+                .ok()?;
+            String::from_utf8_lossy(&head[..n]).contains("STRUCTURED_POINTS")
+        }
+        _ => false,
+    };
+    if !image_data {
+        return None;
+    }
+    match tetray_io::vtk::read_image_grid(path) {
+        Ok(image) => Some(GridVolume {
+            dims: image.dims,
+            origin: (DVec3::from(image.origin) - origin).as_vec3(),
+            spacing: DVec3::from(image.spacing).as_vec3(),
+            fields: image
+                .fields
+                .into_iter()
+                .map(|f| (f.name, f.values))
+                .collect(),
+        }),
+        Err(e) => {
+            eprintln!("warning: {e}: shear-warp is not available in the viewer");
+            None
+        }
+    }
 }
 
 fn parse_image_scale(text: &str) -> Result<f32, String> {

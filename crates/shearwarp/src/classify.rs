@@ -43,6 +43,18 @@ impl Classification {
             Classification::PostClassified => "post-classified",
         }
     }
+
+    /// The classification an integration method asks of shear-warp: the
+    /// Riemann sum post-classifies (the seed's baseline: the front sample
+    /// constant over each slab); every other method pre-integrates with the
+    /// full table.
+    pub fn for_method(method: tetray_integrate::Method) -> Classification {
+        if method == tetray_integrate::Method::Riemann {
+            Classification::PostClassified
+        } else {
+            Classification::PreIntegrated
+        }
+    }
 }
 
 /// Everything that depends on the transfer function only.

@@ -9,9 +9,10 @@ use egui::{PointerButton, Rect, Sense};
 use glam::Vec3;
 use tetray_integrate::{Method, OpacityMode, TransferFunction};
 use tetray_raycast::{Camera, Scene};
+use tetray_shearwarp::{Classification, ClassifyOptions, ShearWarp};
 
 use crate::camera_ui;
-use crate::cpu::{CpuJob, CpuWorker};
+use crate::cpu::{CpuJob, CpuWork, CpuWorker};
 use crate::dataset::{histogram, Dataset};
 use crate::engine::{FrameKey, GpuRenderer, Look, Phase, Progressive};
 use crate::methods::{integrator_options, RendererChoice, Settings, ViewIntegrator};
@@ -79,6 +80,9 @@ pub struct ViewerApp {
     pub(crate) cpu: CpuWorker,
     /// The cell projection, prepared when first picked.
     projection: Option<ProjectRenderer>,
+    /// Shear-warp's classified grids, one per view, and the generation of
+    /// the settings they were made for.
+    shear_warp: Option<(u64, Vec<Arc<ShearWarp>>)>,
     /// The key of the frame a CPU or projection frame was shown for.
     external_shown: Option<FrameKey>,
     pub(crate) key: Option<FrameKey>,
@@ -162,6 +166,7 @@ impl ViewerApp {
             reset_camera: false,
             cpu: CpuWorker::default(),
             projection: None,
+            shear_warp: None,
             external_shown: None,
             key: None,
             error: None,
@@ -445,12 +450,12 @@ impl ViewerApp {
                     true
                 }
             }
-            RendererChoice::CpuReference => {
+            RendererChoice::CpuReference | RendererChoice::ShearWarp => {
                 self.progressive
                     .advance(gpu, key, &integrators, &look, output, false)?
             }
         };
-        let cpu_mode = renderer == RendererChoice::CpuReference;
+        let cpu_mode = renderer.on_cpu();
         if let Some(result) = self.cpu.poll() {
             let frame = result.context("the CPU reference render")?;
             if &frame.key == key && cpu_mode {
@@ -467,16 +472,55 @@ impl ViewerApp {
         }
         if cpu_mode && self.external_shown.as_ref() != Some(key) {
             if still && !self.cpu.is_working_on(key) {
+                let work = if renderer == RendererChoice::ShearWarp {
+                    CpuWork::ShearWarp(self.shear_warp_views()?)
+                } else {
+                    CpuWork::Raycast {
+                        scene: Arc::clone(&self.scene),
+                        integrators: self.views.iter().map(|v| Arc::clone(&v.cpu)).collect(),
+                    }
+                };
                 self.cpu.request(CpuJob {
                     key: key.clone(),
-                    scene: Arc::clone(&self.scene),
-                    integrators: self.views.iter().map(|v| Arc::clone(&v.cpu)).collect(),
+                    work,
                 });
             }
             more = true;
         }
         self.tick(more);
         Ok(more || self.cpu.busy())
+    }
+
+    /// Shear-warp's grid classified for each view's method with the
+    /// current transfer function and options (made once per generation;
+    /// the run-length encodings are built by the first frame, on the
+    /// worker).
+    fn shear_warp_views(&mut self) -> anyhow::Result<Vec<Arc<ShearWarp>>> {
+        if let Some((generation, views)) = &self.shear_warp {
+            if *generation == self.generation {
+                return Ok(views.clone());
+            }
+        }
+        let grid = self.dataset.regular_grid(&self.settings.field)?;
+        let tf = self.tf_editor.transfer_function()?;
+        let table_size = tetray_integrate::IntegratorOptions::default().preintegration_table_size;
+        let views = self
+            .views
+            .iter()
+            .map(|view| {
+                let options = ClassifyOptions {
+                    classification: Classification::for_method(view.method),
+                    unit_distance: self.settings.unit_distance,
+                    opacity_mode: self.settings.opacity_mode,
+                    table_size,
+                };
+                ShearWarp::new(grid.clone(), &tf, &options)
+                    .map(Arc::new)
+                    .context("classifying the grid for shear-warp")
+            })
+            .collect::<anyhow::Result<Vec<_>>>()?;
+        self.shear_warp = Some((self.generation, views.clone()));
+        Ok(views)
     }
 
     /// Times display frames while frames are being made.

@@ -1,7 +1,7 @@
-//! The CPU reference ray caster for still frames: it renders on a thread
-//! of its own (rayon inside), one frame at a time, so the window stays
-//! live; a request made while one runs waits for it and replaces any
-//! request still waiting.
+//! The CPU renderers for still frames, the reference ray caster and
+//! shear-warp: each renders on a thread of its own (rayon inside), one
+//! frame at a time, so the window stays live; a request made while one
+//! runs waits for it and replaces any request still waiting.
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::mpsc::{channel, Receiver};
@@ -12,15 +12,36 @@ use std::time::Duration;
 use tetray_gpu::GpuStats;
 use tetray_integrate::ScalarIntegrator;
 use tetray_raycast::{render_scalar_with_progress, Image, RenderOptions, Scene};
+use tetray_shearwarp::{Classification, ShearWarp, ShearWarpOptions};
 
 use crate::engine::{FrameKey, FrameReport};
 
-/// A still frame to render: one image per integrator.
+/// A still frame to render: one image per view.
 #[derive(Clone)]
 pub struct CpuJob {
     pub key: FrameKey,
-    pub scene: Arc<Scene>,
-    pub integrators: Vec<Arc<ScalarIntegrator>>,
+    pub work: CpuWork,
+}
+
+/// The renderer of a still frame and what it renders.
+#[derive(Clone)]
+pub enum CpuWork {
+    /// The reference ray caster, one integrator per view.
+    Raycast {
+        scene: Arc<Scene>,
+        integrators: Vec<Arc<ScalarIntegrator>>,
+    },
+    /// Shear-warp, the grid classified for each view's method.
+    ShearWarp(Vec<Arc<ShearWarp>>),
+}
+
+impl CpuWork {
+    fn views(&self) -> usize {
+        match self {
+            CpuWork::Raycast { integrators, .. } => integrators.len(),
+            CpuWork::ShearWarp(renderers) => renderers.len(),
+        }
+    }
 }
 
 /// What came back.
@@ -99,7 +120,7 @@ fn spawn(job: CpuJob) -> Running {
     let (sender, result) = channel();
     let rows_done = Arc::new(AtomicUsize::new(0));
     let height = job.key.size.1;
-    let views = job.integrators.len();
+    let views = job.work.views();
     let counter = Arc::clone(&rows_done);
     let key = job.key.clone();
     let handle = std::thread::spawn(move || {
@@ -115,6 +136,18 @@ fn spawn(job: CpuJob) -> Running {
 }
 
 fn render(job: &CpuJob, rows_done: &AtomicUsize) -> anyhow::Result<CpuFrame> {
+    match &job.work {
+        CpuWork::Raycast { scene, integrators } => raycast(job, scene, integrators, rows_done),
+        CpuWork::ShearWarp(renderers) => shear_warp(job, renderers, rows_done),
+    }
+}
+
+fn raycast(
+    job: &CpuJob,
+    scene: &Scene,
+    integrators: &[Arc<ScalarIntegrator>],
+    rows_done: &AtomicUsize,
+) -> anyhow::Result<CpuFrame> {
     let (width, height) = job.key.size;
     let options = RenderOptions {
         width,
@@ -126,11 +159,11 @@ fn render(job: &CpuJob, rows_done: &AtomicUsize) -> anyhow::Result<CpuFrame> {
     let mut images = Vec::new();
     let mut stats = [GpuStats::default(); 2];
     let mut elapsed = Duration::ZERO;
-    for (view, integrator) in job.integrators.iter().enumerate() {
+    for (view, integrator) in integrators.iter().enumerate() {
         let base = view * height as usize;
         let progress = |done: usize, _rows: usize| rows_done.store(base + done, Ordering::Relaxed);
         let out = render_scalar_with_progress(
-            &job.scene,
+            scene,
             &job.key.camera,
             integrator,
             &options,
@@ -165,4 +198,67 @@ fn render(job: &CpuJob, rows_done: &AtomicUsize) -> anyhow::Result<CpuFrame> {
         },
         images,
     })
+}
+
+/// One shear-warp frame per view. Its counters fill the ray caster's:
+/// slabs composited count as segments (each slab between two slices is one
+/// integrated segment of a ray).
+fn shear_warp(
+    job: &CpuJob,
+    renderers: &[Arc<ShearWarp>],
+    rows_done: &AtomicUsize,
+) -> anyhow::Result<CpuFrame> {
+    let (width, height) = job.key.size;
+    let options = ShearWarpOptions {
+        width,
+        height,
+        early_termination: job.key.early_termination,
+        skip_empty: true,
+    };
+    let mut images = Vec::new();
+    let mut stats = [GpuStats::default(); 2];
+    let mut elapsed = Duration::ZERO;
+    for (view, sw) in renderers.iter().enumerate() {
+        let out = sw
+            .render(&job.key.camera, &options)
+            .map_err(|e| anyhow::anyhow!("shear-warp: {e}"))?;
+        rows_done.store((view + 1) * height as usize, Ordering::Relaxed);
+        if let Some(slot) = stats.get_mut(view) {
+            *slot = GpuStats {
+                rays: u64::from(width) * u64::from(height),
+                rays_hit: out.image.rgba.iter().filter(|p| p[3] > 0.0).count() as u64,
+                segments: out.stats.slabs_composited,
+                gpu_time: None,
+                wall_time: out.stats.elapsed,
+                ..GpuStats::default()
+            };
+        }
+        elapsed += out.stats.elapsed;
+        images.push(out.image);
+    }
+    Ok(CpuFrame {
+        key: job.key.clone(),
+        report: FrameReport {
+            size: (width, height),
+            views: images.len() as u32,
+            elapsed,
+            batches: 1,
+            stats,
+            renderer: shear_warp_name(renderers),
+        },
+        images,
+    })
+}
+
+/// The report's name of a shear-warp frame: its classification when the
+/// views share one.
+fn shear_warp_name(renderers: &[Arc<ShearWarp>]) -> &'static str {
+    let first = renderers.first().map(|sw| sw.classification());
+    if renderers.iter().any(|sw| Some(sw.classification()) != first) {
+        return "shear-warp";
+    }
+    match first {
+        Some(Classification::PostClassified) => "shear-warp, post-classified",
+        _ => "shear-warp, pre-integrated",
+    }
 }

@@ -1,11 +1,13 @@
 //! The mesh being viewed, kept whole so that a scene can be made for any of
 //! its scalar fields, with what `tetray render` derives from it by default
-//! (ParaView's unit distance, the mean chord that sizes the tables).
+//! (ParaView's unit distance, the mean chord that sizes the tables), and,
+//! for image data, the regular grid itself for the shear-warp renderer.
 
 use anyhow::Context;
 use tetray_boundary_bvh::BuildPreset;
 use tetray_mesh::{mean_tet_chord, LoadedMesh, TetMesh, Topology};
 use tetray_raycast::Scene;
+use tetray_shearwarp::RegularGrid;
 
 /// A loaded mesh and its defaults.
 pub struct Dataset {
@@ -17,6 +19,19 @@ pub struct Dataset {
     /// Mean tetrahedron chord: the pre-integration table's length and four
     /// Riemann steps.
     pub chord: f32,
+    /// The file's regular grid, when it is image data (`.vti`, legacy
+    /// STRUCTURED_POINTS): what shear-warp renders.
+    grid: Option<GridVolume>,
+}
+
+/// A regular grid in the mesh's coordinates (relative to the same centring
+/// origin), with its point fields by name.
+#[derive(Debug, Clone)]
+pub struct GridVolume {
+    pub dims: [usize; 3],
+    pub origin: glam::Vec3,
+    pub spacing: glam::Vec3,
+    pub fields: Vec<(String, Vec<f32>)>,
 }
 
 impl Dataset {
@@ -31,7 +46,38 @@ impl Dataset {
             topology: loaded.topology,
             unit_distance,
             chord,
+            grid: None,
         }
+    }
+
+    /// The same dataset with its regular grid, for the shear-warp renderer.
+    pub fn with_grid(mut self, grid: GridVolume) -> Dataset {
+        self.grid = Some(grid);
+        self
+    }
+
+    /// Whether the dataset is image data that shear-warp can render.
+    pub fn has_grid(&self) -> bool {
+        self.grid.is_some()
+    }
+
+    /// The regular grid with `field` as its values.
+    pub fn regular_grid(&self, field: &str) -> anyhow::Result<RegularGrid> {
+        let grid = self.grid.as_ref().with_context(|| {
+            format!(
+                "{} is not image data: shear-warp renders regular grids (.vti, legacy \
+                 STRUCTURED_POINTS)",
+                self.name
+            )
+        })?;
+        let values = grid
+            .fields
+            .iter()
+            .find(|(name, _)| name == field)
+            .map(|(_, values)| values.clone())
+            .with_context(|| format!("{}: the grid has no point field {field:?}", self.name))?;
+        RegularGrid::new(grid.dims, grid.origin, grid.spacing, values)
+            .with_context(|| format!("{}: not a grid shear-warp can render", self.name))
     }
 
     pub fn field_names(&self) -> Vec<String> {

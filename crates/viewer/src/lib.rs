@@ -27,7 +27,7 @@ pub mod tf_editor;
 use std::sync::Arc;
 
 pub use app::{ViewerApp, ViewerOptions};
-pub use dataset::Dataset;
+pub use dataset::{Dataset, GridVolume};
 
 /// Default window size (points).
 pub const WINDOW_SIZE: [f32; 2] = [1280.0, 800.0];

@@ -28,15 +28,20 @@ pub enum RendererChoice {
     /// The CPU reference ray caster for still frames; the GPU shows
     /// previews while the view changes.
     CpuReference,
+    /// Shear-warp (crates/shearwarp) on the file's regular grid, image data
+    /// only, still frames on the CPU as the reference's; the Riemann sum
+    /// post-classifies, every other method pre-integrates.
+    ShearWarp,
 }
 
 impl RendererChoice {
-    pub const ALL: [RendererChoice; 5] = [
+    pub const ALL: [RendererChoice; 6] = [
         RendererChoice::GpuRaycast,
         RendererChoice::Projection(SortKind::Centroid),
         RendererChoice::Projection(SortKind::Mpvo),
         RendererChoice::Projection(SortKind::Mpvonc),
         RendererChoice::CpuReference,
+        RendererChoice::ShearWarp,
     ];
 
     pub fn label(self) -> &'static str {
@@ -46,6 +51,7 @@ impl RendererChoice {
             RendererChoice::Projection(SortKind::Mpvo) => "cell projection, MPVO sort",
             RendererChoice::Projection(SortKind::Mpvonc) => "cell projection, MPVONC sort",
             RendererChoice::CpuReference => "CPU reference (still frame)",
+            RendererChoice::ShearWarp => "shear-warp (regular grids, still frame)",
         }
     }
 
@@ -57,7 +63,18 @@ impl RendererChoice {
                 method_code(method).is_some()
             }
             RendererChoice::CpuReference => true,
+            // Only the classification depends on the method.
+            RendererChoice::ShearWarp => true,
         }
+    }
+
+    /// Whether it renders on the CPU in a worker thread (the GPU ray
+    /// caster shows previews meanwhile).
+    pub fn on_cpu(self) -> bool {
+        matches!(
+            self,
+            RendererChoice::CpuReference | RendererChoice::ShearWarp
+        )
     }
 }
 

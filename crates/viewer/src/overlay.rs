@@ -4,7 +4,6 @@
 use egui::{Align2, Color32, FontId, Pos2, Rect, Sense, Shape, Stroke, Vec2};
 
 use crate::app::ViewerApp;
-use crate::methods::RendererChoice;
 use crate::present::{heat, Display};
 
 pub fn draw(app: &mut ViewerApp, ui: &mut egui::Ui, rect: Rect) {
@@ -121,7 +120,10 @@ fn colour_bar(ui: &egui::Ui, rect: Rect, scale: f32) {
 /// A thin bar along the bottom while the frame is refined or the CPU
 /// renders.
 fn progress(app: &ViewerApp, ui: &egui::Ui, rect: Rect) {
-    let cpu = (app.settings.renderer == RendererChoice::CpuReference)
+    let cpu = app
+        .settings
+        .renderer
+        .on_cpu()
         .then(|| app.cpu.progress())
         .flatten();
     let fraction = cpu.unwrap_or_else(|| app.progressive.progress());

@@ -61,7 +61,13 @@ fn rendering(app: &mut ViewerApp, ui: &mut Ui) {
         .selected_text(s.renderer.label())
         .show_ui(ui, |ui| {
             for r in RendererChoice::ALL {
-                ui.selectable_value(&mut s.renderer, r, r.label());
+                let available = r != RendererChoice::ShearWarp || app.dataset.has_grid();
+                ui.add_enabled_ui(available, |ui| {
+                    ui.selectable_value(&mut s.renderer, r, r.label())
+                        .on_disabled_hover_text(
+                            "shear-warp renders image data (.vti, legacy STRUCTURED_POINTS)",
+                        );
+                });
             }
         });
     // A method the renderer cannot run falls back to its closed form.

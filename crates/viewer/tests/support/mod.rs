@@ -59,7 +59,11 @@ pub fn options() -> ViewerOptions {
 
 /// The viewer on the default dataset in a harness drawing with wgpu.
 pub fn harness(options: ViewerOptions) -> Harness<'static, ViewerApp> {
-    let dataset = blunt_fin();
+    harness_on(blunt_fin(), options)
+}
+
+/// The viewer on `dataset` in a harness drawing with wgpu.
+pub fn harness_on(dataset: Dataset, options: ViewerOptions) -> Harness<'static, ViewerApp> {
     Harness::builder()
         .with_size(egui::Vec2::from(WINDOW))
         .wgpu_setup(tetray_viewer::wgpu_setup())
