@@ -98,7 +98,12 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
     };
     let origin = input.loaded.origin();
     let mut dataset = Dataset::from_loaded(input.name, input.loaded);
-    if let Some(grid) = args.mesh.mesh.as_deref().and_then(|p| image_grid(p, origin)) {
+    if let Some(grid) = args
+        .mesh
+        .mesh
+        .as_deref()
+        .and_then(|p| image_grid(p, origin))
+    {
         dataset = dataset.with_grid(grid);
         println!("image data: the shear-warp renderer is available in the Renderer menu");
     }

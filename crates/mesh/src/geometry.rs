@@ -55,8 +55,6 @@ pub fn bounds_f64(points: impl Iterator<Item = DVec3>) -> Option<(DVec3, DVec3)>
 pub struct TetShape {
     /// Six times the signed volume: `(p1 - p0) . ((p2 - p0) x (p3 - p0))`.
     pub volume6: f64,
-    /// Length of the longest of the six edges.
-    pub max_edge: f64,
     /// Twice the area of the largest face.
     pub max_face_area2: f64,
     /// Largest absolute coordinate of the four corners.
@@ -90,10 +88,7 @@ impl TetShape {
 /// Shape of the tetrahedron with corners `p`.
 pub fn tet_shape(p: [Vec3; 4]) -> TetShape {
     let q = p.map(|v| v.as_dvec3());
-    let (e1, e2, e3) = (q[1] - q[0], q[2] - q[0], q[3] - q[0]);
-    let volume6 = e1.dot(e2.cross(e3));
-    let edges: [DVec3; 6] = [e1, e2, e3, q[2] - q[1], q[3] - q[1], q[3] - q[2]];
-    let max_edge = edges.iter().map(|e| e.length()).fold(0.0, f64::max);
+    let volume6 = tet_volume6(p);
     let max_face_area2 = FACE_VERTICES
         .iter()
         .map(|&[a, b, c]| (q[b] - q[a]).cross(q[c] - q[a]).length())
@@ -101,10 +96,19 @@ pub fn tet_shape(p: [Vec3; 4]) -> TetShape {
     let max_coordinate = q.iter().map(|v| v.abs().max_element()).fold(0.0, f64::max);
     TetShape {
         volume6,
-        max_edge,
         max_face_area2,
         max_coordinate,
     }
+}
+
+/// Six times the signed volume of the tetrahedron with corners `p`, in f64
+/// (the [`TetShape::volume6`] of [`tet_shape`], alone). Swapping two
+/// corners negates it exactly: the cross product's components and the dot
+/// product are sums whose rounding is symmetric in sign.
+pub fn tet_volume6(p: [Vec3; 4]) -> f64 {
+    let q = p.map(|v| v.as_dvec3());
+    let (e1, e2, e3) = (q[1] - q[0], q[2] - q[0], q[3] - q[0]);
+    e1.dot(e2.cross(e3))
 }
 
 impl TetMesh {
@@ -159,7 +163,7 @@ impl TetMesh {
                         None => return 0,
                     }
                 }
-                if tet_shape(corners).volume6 < 0.0 {
+                if tet_volume6(corners) < 0.0 {
                     tet.swap(2, 3);
                     1
                 } else {

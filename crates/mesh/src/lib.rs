@@ -38,7 +38,9 @@ pub mod structured;
 
 pub use error::MeshError;
 pub use exclude::ExcludedCells;
-pub use geometry::{bounds_f64, centring_origin, tet_shape, TetShape, DEGENERATE_HEIGHT_ULPS};
+pub use geometry::{
+    bounds_f64, centring_origin, tet_shape, tet_volume6, TetShape, DEGENERATE_HEIGHT_ULPS,
+};
 pub use info::{FieldRange, MeshSummary};
 pub use loaded::{finish, prepare, ElementBlock, LoadReport, LoadedMesh, MeshRead};
 pub use scale::{default_field, mean_tet_chord, value_range};

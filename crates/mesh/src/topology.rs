@@ -1,10 +1,12 @@
 //! Face-neighbour graph: which tetrahedron lies across each face, and the
 //! boundary faces.
 //!
-//! Faces are matched by sorting, not hashing: every face of every
-//! tetrahedron becomes one `u128` holding its three sorted point indices
-//! above `4 * tet + local_face`; after a parallel sort equal faces are
-//! adjacent, and each run of equal point triples is one mesh face.
+//! Faces are matched by bucketing, not hashing: every face of every
+//! tetrahedron, its three point indices sorted, goes to the bucket of its
+//! smallest point (a counting sort over the points), each bucket is sorted
+//! by the other two (in parallel; buckets hold a few dozen faces), and
+//! each tetrahedron then finds the other side of each of its faces by a
+//! binary search in one bucket (in parallel, writing only its own row).
 
 use rayon::prelude::*;
 
@@ -14,27 +16,116 @@ use crate::{BoundaryFace, MeshError, TetMesh, Topology, FACE_VERTICES, NO_NEIGHB
 /// `u32::MAX` is [`NO_NEIGHBOR`].
 pub const MAX_TETS: usize = (u32::MAX / 4) as usize;
 
-/// Sort key of local face `f` of `tet`: sorted point indices, then the
-/// face's id `4 * tet + f` in the low 32 bits.
-fn face_key(tet: &[u32; 4], id: u32, f: usize) -> u128 {
+/// Buckets sorted by one rayon task.
+const BUCKETS_PER_TASK: usize = 4096;
+
+/// The point indices of local face `f` of `tet`, sorted.
+fn sorted_face(tet: &[u32; 4], f: usize) -> [u32; 3] {
     let [a, b, c] = FACE_VERTICES[f];
     let mut v = [tet[a], tet[b], tet[c]];
     v.sort_unstable();
-    (u128::from(v[0]) << 96) | (u128::from(v[1]) << 64) | (u128::from(v[2]) << 32) | u128::from(id)
+    v
 }
 
-/// The sorted point triple of a key (the face without its id).
-fn key_face(key: u128) -> u128 {
-    key >> 32
+/// Every face of every tetrahedron, in buckets by smallest point: bucket
+/// `p` is `entries[offsets[p]..offsets[p + 1]]`, each entry the other two
+/// points and the face's id `4 * tet + local_face`, sorted.
+struct FaceBuckets {
+    offsets: Vec<u32>,
+    entries: Vec<[u32; 3]>,
 }
 
-fn key_id(key: u128) -> u32 {
-    // The low 32 bits are the id by construction.
-    (key & u128::from(u32::MAX)) as u32
+/// What lies across a face.
+enum OtherSide {
+    Boundary,
+    Face(u32),
+    /// More than two tetrahedra share it.
+    NonManifold,
 }
 
-fn key_vertices(key: u128) -> [u32; 3] {
-    [(key >> 96) as u32, (key >> 64) as u32, (key >> 32) as u32]
+impl FaceBuckets {
+    fn new(tets: &[[u32; 4]]) -> FaceBuckets {
+        let points = tets
+            .par_iter()
+            .map(|t| t.iter().copied().max().unwrap_or(0) as usize + 1)
+            .max()
+            .unwrap_or(0);
+        let mut offsets = vec![0u32; points + 1];
+        for tet in tets {
+            for f in 0..4 {
+                offsets[sorted_face(tet, f)[0] as usize + 1] += 1;
+            }
+        }
+        for p in 0..points {
+            offsets[p + 1] += offsets[p];
+        }
+        let mut cursor = offsets.clone();
+        let mut entries = vec![[0u32; 3]; 4 * tets.len()];
+        for (t, tet) in tets.iter().enumerate() {
+            for f in 0..4 {
+                let [a, b, c] = sorted_face(tet, f);
+                let slot = &mut cursor[a as usize];
+                // t < MAX_TETS, so 4 t + 3 fits in u32.
+                entries[*slot as usize] = [b, c, 4 * t as u32 + f as u32];
+                *slot += 1;
+            }
+        }
+        drop(cursor);
+        // Each task sorts the buckets of a run of points: split the entries
+        // at those runs' offsets.
+        let mut tasks = Vec::new();
+        let mut rest = entries.as_mut_slice();
+        for first in (0..points).step_by(BUCKETS_PER_TASK) {
+            let last = (first + BUCKETS_PER_TASK).min(points);
+            let len = (offsets[last] - offsets[first]) as usize;
+            let (head, tail) = rest.split_at_mut(len);
+            tasks.push((first..last, head));
+            rest = tail;
+        }
+        tasks.into_par_iter().for_each(|(range, slice)| {
+            let base = offsets[range.start];
+            for p in range {
+                let (s, e) = (offsets[p] - base, offsets[p + 1] - base);
+                slice[s as usize..e as usize].sort_unstable();
+            }
+        });
+        FaceBuckets { offsets, entries }
+    }
+
+    /// The faces equal to `face` (sorted points), its own included.
+    fn same_faces(&self, [a, b, c]: [u32; 3]) -> &[[u32; 3]] {
+        let bucket =
+            &self.entries[self.offsets[a as usize] as usize..self.offsets[a as usize + 1] as usize];
+        let lo = bucket.partition_point(|e| (e[0], e[1]) < (b, c));
+        let len = bucket[lo..].partition_point(|e| (e[0], e[1]) == (b, c));
+        &bucket[lo..lo + len]
+    }
+
+    /// What lies across face `f` of tetrahedron `t`.
+    fn other_side(&self, tet: &[u32; 4], t: usize, f: usize) -> OtherSide {
+        let id = 4 * t as u32 + f as u32;
+        match self.same_faces(sorted_face(tet, f)) {
+            [_] => OtherSide::Boundary,
+            [x, y] => OtherSide::Face(if x[2] == id { y[2] } else { x[2] }),
+            _ => OtherSide::NonManifold,
+        }
+    }
+
+    /// The non-manifold face with the smallest points (the same one
+    /// whatever the thread count): its points and tetrahedra.
+    fn first_non_manifold(&self) -> Option<([u32; 3], Vec<u32>)> {
+        (0..self.offsets.len().saturating_sub(1)).find_map(|a| {
+            let bucket = &self.entries[self.offsets[a] as usize..self.offsets[a + 1] as usize];
+            bucket.iter().enumerate().find_map(|(i, e)| {
+                let run = bucket[i..].partition_point(|x| (x[0], x[1]) == (e[0], e[1]));
+                let first_of_run = i == 0 || (bucket[i - 1][0], bucket[i - 1][1]) != (e[0], e[1]);
+                (first_of_run && run > 2).then(|| {
+                    let tets = bucket[i..i + run].iter().map(|x| x[2] / 4).collect();
+                    ([a as u32, e[0], e[1]], tets)
+                })
+            })
+        })
+    }
 }
 
 impl Topology {
@@ -58,43 +149,38 @@ impl Topology {
                 max: MAX_TETS,
             });
         }
-        let mut keys: Vec<u128> = mesh
+        let faces = FaceBuckets::new(&mesh.tets);
+        let neighbors: Result<Vec<[u32; 4]>, [u32; 3]> = mesh
             .tets
             .par_iter()
             .enumerate()
-            .flat_map_iter(|(t, tet)| {
-                // t < MAX_TETS, so 4 t + 3 fits in u32.
-                let base = 4 * t as u32;
-                (0..4).map(move |f| face_key(tet, base + f as u32, f))
+            .map(|(t, tet)| {
+                let mut row = [NO_NEIGHBOR; 4];
+                for (f, slot) in row.iter_mut().enumerate() {
+                    match faces.other_side(tet, t, f) {
+                        OtherSide::Boundary => {}
+                        OtherSide::Face(id) => *slot = id / 4,
+                        OtherSide::NonManifold => return Err(sorted_face(tet, f)),
+                    }
+                }
+                Ok(row)
             })
             .collect();
-        keys.par_sort_unstable();
-
-        let mut neighbors = vec![[NO_NEIGHBOR; 4]; n];
-        let mut start = 0;
-        while start < keys.len() {
-            let face = key_face(keys[start]);
-            let mut end = start + 1;
-            while end < keys.len() && key_face(keys[end]) == face {
-                end += 1;
+        let neighbors = match neighbors {
+            Ok(neighbors) => neighbors,
+            Err(face) => {
+                // Report the same face whatever the thread count: the one
+                // with the smallest points.
+                let (vertices, tets) = faces.first_non_manifold().unwrap_or_else(|| {
+                    (
+                        face,
+                        faces.same_faces(face).iter().map(|e| e[2] / 4).collect(),
+                    )
+                });
+                return Err(MeshError::NonManifoldFace { vertices, tets });
             }
-            match end - start {
-                1 => {}
-                2 => {
-                    let (a, b) = (key_id(keys[start]), key_id(keys[start + 1]));
-                    neighbors[(a / 4) as usize][(a % 4) as usize] = b / 4;
-                    neighbors[(b / 4) as usize][(b % 4) as usize] = a / 4;
-                }
-                _ => {
-                    return Err(MeshError::NonManifoldFace {
-                        vertices: key_vertices(keys[start]),
-                        tets: keys[start..end].iter().map(|&k| key_id(k) / 4).collect(),
-                    })
-                }
-            }
-            start = end;
-        }
-        drop(keys);
+        };
+        drop(faces);
 
         let mut boundary_faces = Vec::new();
         let mut boundary_index = vec![[u32::MAX; 4]; n];

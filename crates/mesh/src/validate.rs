@@ -84,8 +84,18 @@ pub(crate) fn check_walkable(
             vertices,
         });
     }
+    Ok(walkable_report(mesh, topology))
+}
+
+/// The findings of [`check_walkable`] without its error checks, for a mesh
+/// that [`crate::exclude`] made walkable: it left out the flat
+/// tetrahedra, the cells overlapping across a face and the non-manifold
+/// ones, and oriented the rest (an exact negation of the volume), so the
+/// checks would find nothing at the cost of a second pass over every
+/// tetrahedron.
+pub(crate) fn walkable_report(mesh: &TetMesh, topology: &Topology) -> ValidationReport {
     let canonical = duplicate_points(&mesh.points);
-    Ok(findings(mesh, topology, &canonical))
+    findings(mesh, topology, &canonical)
 }
 
 fn check_sizes(mesh: &TetMesh) -> Result<(), MeshError> {

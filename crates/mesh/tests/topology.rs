@@ -166,3 +166,77 @@ fn large_grid_matches_every_face() {
     });
     assert!(symmetric);
 }
+
+/// The bucketed matching against an independent one (a hash map of sorted
+/// point triples) on a grid whose points and tetrahedra are shuffled, so
+/// that buckets are not filled in order.
+#[test]
+fn matches_a_hash_map_on_a_shuffled_mesh() {
+    let mut mesh = grid(9);
+    let mut state = 0x9e37_79b9_u64;
+    let mut next = move |n: usize| {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1);
+        (state >> 33) as usize % n
+    };
+    let mut relabel: Vec<u32> = (0..mesh.points.len() as u32).collect();
+    for i in (1..relabel.len()).rev() {
+        relabel.swap(i, next(i + 1));
+    }
+    for tet in &mut mesh.tets {
+        *tet = tet.map(|v| relabel[v as usize]);
+    }
+    let mut points = mesh.points.clone();
+    for (old, &new) in relabel.iter().enumerate() {
+        points[new as usize] = mesh.points[old];
+    }
+    mesh.points = points;
+    for i in (1..mesh.tets.len()).rev() {
+        mesh.tets.swap(i, next(i + 1));
+    }
+    let topo = Topology::build(&mesh).unwrap();
+    check_consistent(&mesh, &topo);
+    check_outward(&mesh, &topo);
+
+    let mut faces: std::collections::HashMap<[u32; 3], Vec<u32>> = Default::default();
+    for (t, tet) in mesh.tets.iter().enumerate() {
+        for local in FACE_VERTICES {
+            let mut key = local.map(|v| tet[v]);
+            key.sort_unstable();
+            faces.entry(key).or_default().push(t as u32);
+        }
+    }
+    for (t, tet) in mesh.tets.iter().enumerate() {
+        for (f, local) in FACE_VERTICES.iter().enumerate() {
+            let mut key = local.map(|v| tet[v]);
+            key.sort_unstable();
+            let expected = faces[&key]
+                .iter()
+                .copied()
+                .find(|&o| o != t as u32)
+                .unwrap_or(NO_NEIGHBOR);
+            assert_eq!(topo.neighbors[t][f], expected, "tet {t} face {f}");
+        }
+    }
+}
+
+/// With several faces shared by three tetrahedra, the one named is the
+/// one with the smallest points, whatever the order of the tetrahedra.
+#[test]
+fn the_first_non_manifold_face_is_named() {
+    let mut mesh = two_tets();
+    mesh.points.push(Vec3::new(0.2, 0.2, 2.0));
+    mesh.points.push(Vec3::new(0.1, 0.9, 1.5));
+    // Face (1, 2, 3) of tet 0 shared by two more; face (0, 1, 2) by one more.
+    mesh.tets.insert(0, [1, 2, 3, 6]);
+    mesh.tets.insert(0, [1, 2, 3, 5]);
+    mesh.tets.push([0, 1, 2, 5]);
+    match Topology::build(&mesh) {
+        Err(MeshError::NonManifoldFace { vertices, tets }) => {
+            assert_eq!(vertices, [0, 1, 2]);
+            assert_eq!(tets, vec![2, 3, 4]);
+        }
+        other => panic!("expected NonManifoldFace, got {other:?}"),
+    }
+}

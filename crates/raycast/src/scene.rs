@@ -157,23 +157,19 @@ impl Scene {
                 points,
             });
         }
-        // With the Morton order the records are only checked here (errors
-        // name the input's ids) and built after the renumbering, so that
-        // they and the copies it makes are not in memory at once.
-        let walk = match cell_order {
-            CellOrder::File => Some(walk_tets(&mesh, &topology)?),
-            CellOrder::Morton => {
-                check_walk_tets(&mesh, &topology)?;
-                None
-            }
-        };
+        // With the Morton order the records are built (and checked) after
+        // the renumbering, which needs only the neighbours in range; an
+        // error names the input's ids.
+        if let CellOrder::Morton = cell_order {
+            check_neighbors_in_range(&topology)?;
+        }
         check_boundary_faces(&mesh, &topology)?;
         let (mut mesh, mut topology, mut scalar) = (mesh, topology, scalar);
-        let (mut walk, order) = match walk {
-            Some(walk) => (walk, None),
-            None => {
+        let (mut walk, order) = match cell_order {
+            CellOrder::File => (walk_tets(&mesh, &topology, None)?, None),
+            CellOrder::Morton => {
                 let order = morton_reorder(&mut mesh, &mut topology, &mut scalar);
-                (walk_tets(&mesh, &topology)?, Some(order))
+                (walk_tets(&mesh, &topology, Some(&order))?, Some(order))
             }
         };
         let bvh = BoundaryBvh::build(&mesh, &topology, preset)?;
@@ -289,7 +285,11 @@ fn active_field(mesh: &TetMesh, name: &str) -> Result<Vec<f32>, SceneError> {
 /// Packs vertices and neighbours, finding for every shared face the
 /// neighbour's local index of it (the neighbour's vertex off the face): the
 /// walk then knows which vertex of the next tetrahedron is new.
-fn walk_tets(mesh: &TetMesh, topology: &Topology) -> Result<Vec<WalkTet>, SceneError> {
+fn walk_tets(
+    mesh: &TetMesh,
+    topology: &Topology,
+    order: Option<&Reorder>,
+) -> Result<Vec<WalkTet>, SceneError> {
     // In parallel; on a bad mesh the error of the first bad tetrahedron.
     mesh.tets
         .par_iter()
@@ -297,27 +297,64 @@ fn walk_tets(mesh: &TetMesh, topology: &Topology) -> Result<Vec<WalkTet>, SceneE
         .enumerate()
         .map(|t| walk_record(mesh, t))
         .collect::<Result<Vec<_>, _>>()
-        .map_err(|_| first_bad(mesh, topology))
+        .map_err(|_| first_bad(mesh, topology, order))
 }
 
-/// [`walk_tets`]' checks alone, keeping nothing.
-fn check_walk_tets(mesh: &TetMesh, topology: &Topology) -> Result<(), SceneError> {
-    mesh.tets
+/// Every neighbour id names a tetrahedron (what the renumbering needs; the
+/// walk records check the rest).
+fn check_neighbors_in_range(topology: &Topology) -> Result<(), SceneError> {
+    let n = topology.neighbors.len();
+    let bad = |row: &[u32; 4]| {
+        row.iter()
+            .position(|&nb| nb != NO_NEIGHBOR && nb as usize >= n)
+    };
+    match topology
+        .neighbors
+        .par_iter()
+        .position_first(|row| bad(row).is_some())
+    {
+        None => Ok(()),
+        Some(tet) => {
+            let face = bad(&topology.neighbors[tet]).unwrap_or_default();
+            Err(SceneError::BadNeighbor {
+                tet,
+                face,
+                neighbor: topology.neighbors[tet][face],
+            })
+        }
+    }
+}
+
+/// The error of the bad tetrahedron with the smallest input id, named by
+/// its input ids (`order` maps the scene's ids back).
+fn first_bad(mesh: &TetMesh, topology: &Topology, order: Option<&Reorder>) -> SceneError {
+    let input_tet = |t: usize| order.map_or(t, |o| o.tet_from[t] as usize);
+    let bad = mesh
+        .tets
         .par_iter()
         .zip(&topology.neighbors)
         .enumerate()
-        .try_for_each(|t| walk_record(mesh, t).map(|_| ()))
-        .map_err(|_| first_bad(mesh, topology))
-}
-
-/// The error of the first tetrahedron [`walk_record`] rejects.
-fn first_bad(mesh: &TetMesh, topology: &Topology) -> SceneError {
-    mesh.tets
-        .iter()
-        .zip(&topology.neighbors)
-        .enumerate()
-        .find_map(|t| walk_record(mesh, t).err())
-        .expect("a bad tetrahedron")
+        .filter_map(|t| walk_record(mesh, t).err())
+        .map(|e| match e {
+            SceneError::BadNeighbor {
+                tet,
+                face,
+                neighbor,
+            } => SceneError::BadNeighbor {
+                tet: input_tet(tet),
+                face,
+                neighbor: order
+                    .and_then(|o| o.tet_from.get(neighbor as usize).copied())
+                    .unwrap_or(neighbor),
+            },
+            other => other,
+        })
+        .min_by_key(|e| match e {
+            SceneError::BadNeighbor { tet, .. } => *tet,
+            _ => usize::MAX,
+        });
+    // walk_record failed on some tetrahedron, so `bad` holds its error.
+    bad.unwrap_or(SceneError::Empty)
 }
 
 /// The record of one tetrahedron, checking that each neighbour shares the

@@ -254,7 +254,10 @@ fn shear_warp(
 /// views share one.
 fn shear_warp_name(renderers: &[Arc<ShearWarp>]) -> &'static str {
     let first = renderers.first().map(|sw| sw.classification());
-    if renderers.iter().any(|sw| Some(sw.classification()) != first) {
+    if renderers
+        .iter()
+        .any(|sw| Some(sw.classification()) != first)
+    {
         return "shear-warp";
     }
     match first {

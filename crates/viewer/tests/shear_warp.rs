@@ -140,9 +140,15 @@ fn the_shear_warp_renderer_renders_image_data() {
         image::Rgba([r, g, b, 255])
     });
     let (worst, _) = difference(&shown, &expected, 1);
-    assert!(worst <= 1, "the shown frame differs from shear-warp's by {worst} levels");
+    assert!(
+        worst <= 1,
+        "the shown frame differs from shear-warp's by {worst} levels"
+    );
     let lit = shown.pixels().filter(|p| p[0] > 10 || p[2] > 10).count();
-    assert!(lit * 10 > (w * h) as usize, "the grid is visible ({lit} lit pixels)");
+    assert!(
+        lit * 10 > (w * h) as usize,
+        "the grid is visible ({lit} lit pixels)"
+    );
 
     // Shear-warp resamples (bilinear in slices and warp, side slabs
     // dropped): its own image, close to the ray caster's.
