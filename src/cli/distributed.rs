@@ -163,12 +163,14 @@ fn is_parallel(path: &Path) -> bool {
 
 /// Loads this rank's part and builds what `scene::prepare` builds for the
 /// whole mesh, from the values the ranks agree on.
-fn prepare<C: Communicator>(comm: &C, input: &FrameInput<'_>) -> anyhow::Result<Part> {
+/// Progress lines go to stdout, or to stderr with `quiet` (the bench's
+/// stdout holds only its JSON); rank 0 alone writes them.
+fn prepare<C: Communicator>(comm: &C, input: &FrameInput<'_>, quiet: bool) -> anyhow::Result<Part> {
     let rank0 = comm.rank() == 0;
-    let log = |line: String| {
-        if rank0 {
-            println!("{line}");
-        }
+    let log = |line: String| match (rank0, quiet) {
+        (false, _) => {}
+        (true, false) => println!("{line}"),
+        (true, true) => eprintln!("{line}"),
     };
     if !matches!(input.walk.renderer, RendererArg::Auto | RendererArg::Cpu) {
         bail!("a distributed render uses the CPU ray caster: --renderer auto or cpu");
@@ -311,7 +313,7 @@ fn run_render(args: &super::args::RenderArgs) -> anyhow::Result<()> {
             walk: &args.walk,
             size: args.output.size,
         };
-        let part = prepare(world, &input)?;
+        let part = prepare(world, &input, false)?;
         let opts = render_options(&args.walk, args.output.size);
         let start = Instant::now();
         let Some(frame) = frame(world, &part, &part.camera, &opts, args.distributed.tile)? else {
@@ -385,7 +387,7 @@ fn run_bench(args: &super::bench::BenchArgs) -> anyhow::Result<()> {
             walk: &args.walk,
             size: args.size,
         };
-        let part = prepare(world, &input)?;
+        let part = prepare(world, &input, true)?;
         let opts = render_options(&args.walk, args.size);
         let tile = args.distributed.tile;
         let mut camera = part.camera;
@@ -500,7 +502,7 @@ fn run_compare(args: &super::compare::CompareArgs) -> anyhow::Result<()> {
             walk: &walk,
             size: args.size,
         };
-        let part = prepare(world, &input)?;
+        let part = prepare(world, &input, false)?;
         let opts = render_options(&walk, args.size);
         let start = Instant::now();
         let out = frame(world, &part, &part.camera, &opts, args.distributed.tile)?;

@@ -92,16 +92,17 @@ pub struct OwnedPixels {
 /// # Panics
 /// If a fragment's pixel is not one `rank` owns (the exchange is wrong).
 pub fn composite_owned(received: &[Fragment], layout: &TileLayout, rank: usize) -> OwnedPixels {
-    let owned = layout.owned_pixels(rank);
     let start = Instant::now();
-    // Owned pixels are increasing: a pixel's slot is its rank in `owned`.
-    let slot = |pixel: u32| {
-        owned
-            .binary_search(&pixel)
-            .unwrap_or_else(|_| panic!("pixel {pixel} is not owned by rank {rank}"))
-    };
-    let slots: Vec<usize> = received.iter().map(|f| slot(f.pixel)).collect();
-    let mut counts = vec![0usize; owned.len()];
+    let owned = layout.slots(rank);
+    let slots: Vec<usize> = received
+        .iter()
+        .map(|f| {
+            owned
+                .slot(f.pixel)
+                .unwrap_or_else(|| panic!("pixel {} is not owned by rank {rank}", f.pixel))
+        })
+        .collect();
+    let mut counts = vec![0usize; layout.owned_count(rank)];
     for &s in &slots {
         counts[s] += 1;
     }

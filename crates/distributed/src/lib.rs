@@ -34,7 +34,7 @@ pub mod in_situ;
 pub mod transport;
 
 pub use composite::{assemble, blend, bucket_by_owner, composite_owned, Buckets, OwnedPixels};
-pub use layout::{LayoutError, TileLayout, DEFAULT_TILE};
+pub use layout::{LayoutError, OwnedSlots, TileLayout, DEFAULT_TILE};
 pub use partition::{pieces_for_rank, spatial_split, subset};
 pub use report::{FrameReport, Row};
 pub use summary::{MeshSummary, Reduce};

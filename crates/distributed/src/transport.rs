@@ -94,7 +94,7 @@ pub fn composite<C: Communicator>(
     let root = comm.process_at_rank(0);
     let image = if rank == 0 {
         let per_rank: Vec<usize> = (0..layout.ranks)
-            .map(|r| layout.owned_pixels(r).len() * 4)
+            .map(|r| layout.owned_count(r) * 4)
             .collect();
         let mut all = vec![0f32; per_rank.iter().sum()];
         {
