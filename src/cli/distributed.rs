@@ -113,6 +113,9 @@ fn load_part<C: Communicator>(
     let parallel = args.mesh.as_deref().filter(|p| is_parallel(p));
     if let Some(path) = parallel {
         let name = path.display().to_string();
+        if !path.is_file() {
+            bail!("{name}: no such file");
+        }
         let pieces = parallel_piece_count(path)?;
         let mine = pieces_for_rank(pieces, rank, size);
         let subset = if mine.is_empty() {
