@@ -6,7 +6,8 @@ use glam::{DVec3, Vec3};
 use mpi::traits::*;
 use tetray_boundary_bvh::BuildPreset;
 use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunction};
-use tetray_mesh::{centring_origin, prepare, ScalarField, TetMesh};
+use tetray_mesh::cells::{assemble_at, CellGrid, ReadOptions};
+use tetray_mesh::{centring_origin, finish, prepare, LoadedMesh, MeshRead, ScalarField, TetMesh};
 use tetray_raycast::{Camera, RenderOptions, Scene};
 
 use crate::frame::{agree, render_distributed, DistributedFrame};
@@ -99,13 +100,61 @@ pub fn render_in_situ<C: Communicator>(
     } else {
         Some(prepare(mesh)?)
     };
+    render_loaded(comm, loaded, FIELD, view)
+}
+
+/// One rank's part as VTK cells ([`CellGrid`]: f64 points, any cell type
+/// the file readers take, point and cell arrays), rendering the point
+/// field `field` (cell arrays are averaged to the points of the rank's
+/// cells). Non-tetrahedral cells are split by comparing point numbers, so
+/// a face two ranks share is split alike only if both number its points
+/// in the same order (as the pieces of one file do, see
+/// `tetray_io::vtk::read_piece_subset`); planar shared faces are exact
+/// either way.
+pub fn render_in_situ_cells<C: Communicator>(
+    comm: &C,
+    grid: CellGrid,
+    field: &str,
+    view: &InSituView,
+) -> Result<Option<DistributedFrame>, DistributedError> {
+    let local = tetray_mesh::bounds_f64(
+        grid.points
+            .chunks_exact(3)
+            .map(|p| DVec3::new(p[0], p[1], p[2])),
+    );
+    let (lo, hi) = reduce_bounds(comm, local).ok_or(DistributedError::NoMesh)?;
+    let origin = centring_origin(lo, hi);
+    let loaded = if grid.types.is_empty() {
+        None
+    } else {
+        let read = assemble_at(grid, "in situ", &ReadOptions::default(), origin)?;
+        Some(finish(MeshRead {
+            mesh: read.mesh,
+            format: "memory",
+            warnings: read.warnings,
+            origin: read.origin,
+            tet_cells: read.tet_cells,
+            ..MeshRead::default()
+        })?)
+    };
+    render_loaded(comm, loaded, field, view)
+}
+
+/// The frame of this rank's loaded part (`None`: nothing), its points
+/// relative to the whole mesh's origin.
+fn render_loaded<C: Communicator>(
+    comm: &C,
+    loaded: Option<LoadedMesh>,
+    field: &str,
+    view: &InSituView,
+) -> Result<Option<DistributedFrame>, DistributedError> {
     let cells = loaded.as_ref().map_or(0, |l| l.mesh.tets.len());
-    let agreed = agree(comm, loaded.as_ref().map(|l| &l.mesh), cells, Some(FIELD))?;
+    let agreed = agree(comm, loaded.as_ref().map(|l| &l.mesh), cells, Some(field))?;
     let scene = match loaded {
         Some(l) => Some(Scene::new(
             l.mesh,
             l.topology,
-            FIELD,
+            field,
             BuildPreset::default(),
         )?),
         None => None,

@@ -43,7 +43,7 @@ pub use tetray_raycast::Fragment;
 #[cfg(feature = "mpi")]
 pub use frame::{agree, render_distributed, Agreed, DistributedFrame};
 #[cfg(feature = "mpi")]
-pub use in_situ::{render_in_situ, InSituView, RankMesh};
+pub use in_situ::{render_in_situ, render_in_situ_cells, InSituView, RankMesh};
 #[cfg(feature = "mpi")]
 pub use mpi;
 
@@ -62,6 +62,8 @@ pub enum DistributedError {
     Camera(#[from] tetray_raycast::CameraError),
     #[error(transparent)]
     Mesh(#[from] tetray_mesh::MeshError),
+    #[error(transparent)]
+    Cells(#[from] tetray_mesh::cells::CellError),
     #[error(transparent)]
     Integrator(#[from] tetray_integrate::IntegrateError),
     #[error("{0} values are too many for one MPI message (counts are 32-bit)")]

@@ -1,7 +1,8 @@
-//! The in-situ entry point under `mpirun -n P --oversubscribe`, P = 1..4:
-//! the example `in_situ` renders a hollow box split spatially by rank and
-//! checks it on rank 0 against the whole mesh rendered in one process
-//! (1e-5 per pixel channel; it exits non-zero beyond). Without `mpirun`
+//! The in-situ entry points under `mpirun -n P --oversubscribe`, P =
+//! 1..4: the binary `in_situ` renders a hollow box split spatially by
+//! rank, as tetrahedra arrays and as hexahedral VTK cells, and checks it
+//! on rank 0 against the whole mesh rendered in one process (1e-5 per
+//! pixel channel; it exits non-zero beyond). Without `mpirun`
 //! the test skips loudly, unless `TETRAY_REQUIRE_MPI=1`.
 #![cfg(feature = "mpi")]
 
@@ -24,20 +25,11 @@ fn mpirun() -> Option<PathBuf> {
     found
 }
 
-/// `target/<profile>/examples/in_situ`, built by `cargo test` beside the
-/// test binary (`target/<profile>/deps/`).
-fn example() -> PathBuf {
-    let exe = std::env::current_exe().unwrap();
-    let profile = exe.parent().and_then(|deps| deps.parent()).unwrap();
-    profile.join("examples").join("in_situ")
-}
-
 #[test]
-fn in_situ_matches_one_process_on_1_to_4_ranks() {
+fn in_situ_arrays_and_cells_match_one_process_on_1_to_4_ranks() {
     let Some(mpirun) = mpirun() else { return };
-    let example = example();
-    assert!(example.is_file(), "{} not built", example.display());
-    for ranks in 1..=4 {
+    let example = env!("CARGO_BIN_EXE_in_situ");
+    for (ranks, mode) in (1..=4).flat_map(|r| [(r, "tets"), (r, "cells")]) {
         let out = Command::new(&mpirun)
             .args([
                 "-n",
@@ -46,7 +38,8 @@ fn in_situ_matches_one_process_on_1_to_4_ranks() {
                 "--bind-to",
                 "none",
             ])
-            .arg(&example)
+            .arg(example)
+            .args((mode == "cells").then_some("cells"))
             .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
             .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
             .env("OMPI_MCA_btl_vader_single_copy_mechanism", "none")
@@ -60,7 +53,7 @@ fn in_situ_matches_one_process_on_1_to_4_ranks() {
             "{ranks} ranks failed:\n{stdout}\n{stderr}"
         );
         assert!(
-            stdout.contains(&format!("in situ over {ranks} ranks: max error")),
+            stdout.contains(&format!("over {ranks} ranks: max error")),
             "{stdout}"
         );
         println!("{stdout}");
