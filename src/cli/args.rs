@@ -271,6 +271,9 @@ pub struct RenderArgs {
     pub output: OutputArgs,
     #[command(flatten)]
     pub walk: WalkArgs,
+    #[cfg(feature = "mpi")]
+    #[command(flatten)]
+    pub distributed: super::distributed::DistributedArgs,
 }
 
 impl RenderArgs {

@@ -28,6 +28,9 @@ pub struct BenchArgs {
     /// 360 / frames, one full orbit; 0 times a single view.
     #[arg(long, value_name = "DEGREES", value_parser = parse_finite, allow_hyphen_values = true)]
     pub orbit_step: Option<f32>,
+    #[cfg(feature = "mpi")]
+    #[command(flatten)]
+    pub distributed: super::distributed::DistributedArgs,
 }
 
 #[derive(Debug, Serialize)]
@@ -91,6 +94,10 @@ struct ProjectionJson {
 }
 
 pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
+    #[cfg(feature = "mpi")]
+    if let Some(done) = super::distributed::bench(args) {
+        return done;
+    }
     scene::configure_threads(args.walk.threads)?;
     let frame = scene::FrameArgs {
         mesh: &args.mesh,

@@ -74,6 +74,9 @@ pub struct CompareArgs {
     /// Worker threads of the CPU ray caster (default: all cores).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..))]
     pub threads: Option<u16>,
+    #[cfg(feature = "mpi")]
+    #[command(flatten)]
+    pub distributed: super::distributed::DistributedArgs,
 }
 
 /// A combination by name: "gpu", "cpu:exact", "project:ppi:mpvo".
@@ -115,6 +118,10 @@ pub fn parse_spec(text: &str) -> Result<MethodSpec, String> {
 }
 
 pub fn run(args: &CompareArgs) -> anyhow::Result<()> {
+    #[cfg(feature = "mpi")]
+    if let Some(done) = super::distributed::compare(args) {
+        return done;
+    }
     scene::configure_threads(args.threads)?;
     let log = |line: String| println!("{line}");
     // No early termination: every method integrates every ray to its end,

@@ -4,6 +4,8 @@ mod args;
 mod bench;
 mod compare;
 mod datasets;
+#[cfg(feature = "mpi")]
+mod distributed;
 mod generate;
 mod generate_grid;
 mod info;

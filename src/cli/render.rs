@@ -17,12 +17,16 @@ const PROGRESS_AFTER: Duration = Duration::from_millis(500);
 
 /// The image formats, by file extension.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum ImageFormat {
+pub(super) enum ImageFormat {
     Png,
     Exr,
 }
 
 pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
+    #[cfg(feature = "mpi")]
+    if let Some(done) = super::distributed::render(args) {
+        return done;
+    }
     let output = &args.output.output;
     let format = image_format(output)?;
     scene::configure_threads(args.walk.threads)?;
@@ -124,7 +128,7 @@ pub fn warn_about(stats: &FrameStats) {
 }
 
 /// The output format from the file name, checked before rendering.
-fn image_format(path: &Path) -> anyhow::Result<ImageFormat> {
+pub(super) fn image_format(path: &Path) -> anyhow::Result<ImageFormat> {
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
@@ -145,7 +149,7 @@ fn image_format(path: &Path) -> anyhow::Result<ImageFormat> {
     Ok(format)
 }
 
-fn write_image(
+pub(super) fn write_image(
     image: &Image,
     path: &Path,
     format: ImageFormat,

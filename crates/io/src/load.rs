@@ -159,6 +159,26 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<LoadedMesh, IoError> {
     Ok(finish(read).map_err(|e| e.in_file(&file))?)
 }
 
+/// Some pieces of a parallel file ([`vtk::read_piece_subset`]) ready to
+/// render, like [`load`] does the whole file, with the points relative to
+/// `origin` (the whole mesh's, so every process rounds shared points
+/// alike).
+///
+/// # Errors
+/// As [`load`].
+pub fn load_piece_subset(
+    subset: vtk::PieceSubset,
+    origin: DVec3,
+    opts: &LoadOptions,
+) -> Result<LoadedMesh, IoError> {
+    let name = subset.name().to_string();
+    let vtk_opts = vtk::ReadOptions {
+        linearize: opts.linearize,
+    };
+    let read = from_vtk(subset.assemble(origin, &vtk_opts)?, "VTK parallel XML");
+    Ok(finish(read).map_err(|e| e.in_file(&name))?)
+}
+
 /// Loads a PLOT3D grid and optional solution held in memory (`name` is
 /// used in messages), like [`load`] does a file.
 ///

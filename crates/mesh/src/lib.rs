@@ -43,7 +43,9 @@ pub use geometry::{
 };
 pub use info::{FieldRange, MeshSummary};
 pub use loaded::{finish, prepare, ElementBlock, LoadReport, LoadedMesh, MeshRead};
-pub use scale::{default_field, mean_tet_chord, value_range};
+pub use scale::{
+    default_field, mean_chord, mean_tet_chord, paraview_unit_distance, tet_chord_sum, value_range,
+};
 pub use topology::MAX_TETS;
 pub use validate::{validate, validate_with_topology, ValidationReport};
 

@@ -19,19 +19,25 @@ impl LoadedMesh {
     /// cube root of the dataset's cell count, the diagonal itself for no
     /// cells; 1 (VTK's default) for a mesh without a length scale.
     pub fn paraview_unit_distance(&self) -> f32 {
-        let (lo, hi) = self.mesh.bounds();
-        let diagonal = (hi - lo).as_dvec3().length();
-        let cells = self.input_cells() as f64;
-        let u = if cells > 0.0 {
-            diagonal / cells.cbrt()
-        } else {
-            diagonal
-        };
-        if u > 0.0 && u.is_finite() {
-            u as f32
-        } else {
-            1.0
-        }
+        paraview_unit_distance(self.mesh.bounds(), self.input_cells())
+    }
+}
+
+/// ParaView's default unit distance of a dataset of `cells` input cells
+/// within `bounds` (see [`LoadedMesh::paraview_unit_distance`]; a mesh
+/// split over processes passes its global bounds and cell count).
+pub fn paraview_unit_distance((lo, hi): (glam::Vec3, glam::Vec3), cells: usize) -> f32 {
+    let diagonal = (hi - lo).as_dvec3().length();
+    let cells = cells as f64;
+    let u = if cells > 0.0 {
+        diagonal / cells.cbrt()
+    } else {
+        diagonal
+    };
+    if u > 0.0 && u.is_finite() {
+        u as f32
+    } else {
+        1.0
     }
 }
 
@@ -39,6 +45,12 @@ impl LoadedMesh {
 /// body it is 4 V / S (Cauchy), the typical length of a ray segment; 1 for
 /// a degenerate mesh.
 pub fn mean_tet_chord(mesh: &TetMesh) -> f32 {
+    mean_chord(tet_chord_sum(mesh), mesh.tets.len())
+}
+
+/// The sum over the tetrahedra of their mean chords (those of a mesh split
+/// over processes add up to the whole mesh's).
+pub fn tet_chord_sum(mesh: &TetMesh) -> f64 {
     let mut sum = 0.0f64;
     for tet in &mesh.tets {
         let [a, b, c, d] = tet.map(|v| mesh.points[v as usize].as_dvec3());
@@ -50,7 +62,12 @@ pub fn mean_tet_chord(mesh: &TetMesh) -> f32 {
             sum += 4.0 * volume / surface;
         }
     }
-    let chord = (sum / mesh.tets.len().max(1) as f64) as f32;
+    sum
+}
+
+/// [`mean_tet_chord`] from [`tet_chord_sum`] over `tets` tetrahedra.
+pub fn mean_chord(chord_sum: f64, tets: usize) -> f32 {
+    let chord = (chord_sum / tets.max(1) as f64) as f32;
     if chord > 0.0 && chord.is_finite() {
         chord
     } else {

@@ -78,7 +78,7 @@ impl RenderStats {
         self.walk_failures += u64::from(ray.walk_failure);
     }
 
-    fn merge(mut self, other: RenderStats) -> RenderStats {
+    pub(crate) fn merge(mut self, other: RenderStats) -> RenderStats {
         self.rays += other.rays;
         self.rays_hit += other.rays_hit;
         self.segments += other.segments;
@@ -139,28 +139,22 @@ pub fn render_cpu_with_progress<I: SegmentIntegrator + ?Sized>(
     }
     let rays = camera.pixel_rays(opts.width, opts.height)?;
     let mut image = Image::new(opts.width, opts.height)?;
-    let default_steps = scene.tet_count() as u64 + 1024;
-    let limits = WalkLimits {
-        stop_below_sum: 3.0 * (1.0 - opts.early_termination),
-        max_steps: opts.max_steps_per_ray.map_or(default_steps, u64::from),
-    };
-    let (lo, hi) = scene.bounds();
-    let job = Frame {
-        scene,
-        rays: &rays,
-        integrator,
-        limits,
-        orthographic: camera.parallel_scale.is_some(),
-        eye_inside: camera.is_inside_bounds(lo, hi),
-        bounds: (lo, hi),
-        progress,
-        rows_done: AtomicUsize::new(0),
-        width: opts.width as usize,
-        height: opts.height as usize,
-    };
+    let mut job = Frame::new(scene, camera, &rays, integrator, opts);
+    job.progress = progress;
     let start = Instant::now();
-    let mut stats = match opts.threads {
-        None => job.run(&mut image.rgba),
+    let mut stats = in_pool(opts.threads, || job.run(&mut image.rgba))?;
+    stats.elapsed = start.elapsed();
+    stats.eye_inside_bounds = job.eye_inside;
+    Ok(RenderOutput { image, stats })
+}
+
+/// Runs `work` in rayon's global pool, or in a pool of `threads` threads.
+pub(crate) fn in_pool<R: Send>(
+    threads: Option<usize>,
+    work: impl FnOnce() -> R + Send,
+) -> Result<R, RenderError> {
+    Ok(match threads {
+        None => work(),
         Some(threads) => rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .build()
@@ -168,11 +162,8 @@ pub fn render_cpu_with_progress<I: SegmentIntegrator + ?Sized>(
                 threads,
                 message: e.to_string(),
             })?
-            .install(|| job.run(&mut image.rgba)),
-    };
-    stats.elapsed = start.elapsed();
-    stats.eye_inside_bounds = job.eye_inside;
-    Ok(RenderOutput { image, stats })
+            .install(work),
+    })
 }
 
 /// [`render_cpu`] with a transfer-function integrator: the frame is
@@ -241,25 +232,7 @@ pub fn trace_pixel<I: SegmentIntegrator + ?Sized>(
     y: u32,
 ) -> Result<([f32; 4], RayTrace), RenderError> {
     let rays = camera.pixel_rays(opts.width, opts.height)?;
-    let (lo, hi) = scene.bounds();
-    let frame = Frame {
-        scene,
-        rays: &rays,
-        integrator,
-        limits: WalkLimits {
-            stop_below_sum: 3.0 * (1.0 - opts.early_termination),
-            max_steps: opts
-                .max_steps_per_ray
-                .map_or(scene.tet_count() as u64 + 1024, u64::from),
-        },
-        orthographic: camera.parallel_scale.is_some(),
-        eye_inside: camera.is_inside_bounds(lo, hi),
-        bounds: (lo, hi),
-        progress: None,
-        rows_done: AtomicUsize::new(0),
-        width: opts.width as usize,
-        height: opts.height as usize,
-    };
+    let frame = Frame::new(scene, camera, &rays, integrator, opts);
     let mut walker = Walker::new();
     frame.start(&mut walker, x as usize, y as usize);
     while walker.advance(scene, integrator, frame.limits) {}
@@ -278,27 +251,61 @@ pub fn trace_pixel<I: SegmentIntegrator + ?Sized>(
 }
 
 /// Everything the workers share for one frame.
-struct Frame<'a, I: ?Sized> {
-    scene: &'a Scene,
+pub(crate) struct Frame<'a, I: ?Sized> {
+    pub scene: &'a Scene,
     rays: &'a PixelRays,
-    integrator: &'a I,
-    limits: WalkLimits,
+    pub integrator: &'a I,
+    pub limits: WalkLimits,
     orthographic: bool,
     /// Perspective eye inside the mesh bounds.
     eye_inside: bool,
     bounds: (Vec3, Vec3),
     progress: Option<&'a (dyn Fn(usize, usize) + Sync)>,
     rows_done: AtomicUsize,
-    width: usize,
-    height: usize,
+    pub width: usize,
+    pub height: usize,
+}
+
+impl<'a, I: SegmentIntegrator + ?Sized> Frame<'a, I> {
+    /// The frame of `opts` (no progress callback).
+    pub fn new(
+        scene: &'a Scene,
+        camera: &Camera,
+        rays: &'a PixelRays,
+        integrator: &'a I,
+        opts: &RenderOptions,
+    ) -> Self {
+        let (lo, hi) = scene.bounds();
+        Frame {
+            scene,
+            rays,
+            integrator,
+            limits: WalkLimits {
+                stop_below_sum: 3.0 * (1.0 - opts.early_termination),
+                max_steps: opts
+                    .max_steps_per_ray
+                    .map_or(scene.tet_count() as u64 + 1024, u64::from),
+            },
+            orthographic: camera.parallel_scale.is_some(),
+            eye_inside: camera.is_inside_bounds(lo, hi),
+            bounds: (lo, hi),
+            progress: None,
+            rows_done: AtomicUsize::new(0),
+            width: opts.width as usize,
+            height: opts.height as usize,
+        }
+    }
 }
 
 /// Rays each worker keeps in flight (see [`Walker`]).
 const IN_FLIGHT: usize = 4;
 
+/// Tile edge of the CPU ray caster (rows per parallel band).
+pub(crate) const BAND_ROWS: usize = TILE;
+
 impl<I: SegmentIntegrator + ?Sized> Frame<'_, I> {
     /// Starts `walker` on the ray of pixel `(x, y)`.
-    fn start(&self, walker: &mut Walker<I::Sample>, x: usize, y: usize) {
+    pub(crate) fn start(&self, walker: &mut Walker<I::Sample>, x: usize, y: usize) {
         let ray = self.rays.ray(x as u32, y as u32);
         // A ray whose origin may be inside the mesh walks from the first
         // entry of its whole line (behind the origin too) so it starts in
@@ -316,22 +323,36 @@ impl<I: SegmentIntegrator + ?Sized> Frame<'_, I> {
         pixels
             .par_chunks_mut(self.width * TILE)
             .enumerate()
-            .map(|(band, rows)| self.band(band * TILE, rows))
+            .map(|(band, rows)| {
+                let band_rows = rows.len() / self.width;
+                self.band(band * TILE, band_rows, Walker::new, |walker, index| {
+                    let light = walker.light;
+                    let alpha = 1.0 - light.transmittance.element_sum() / 3.0;
+                    let c = light.color;
+                    rows[index] = [c.x, c.y, c.z, alpha];
+                })
+            })
             .reduce(RenderStats::default, RenderStats::merge)
     }
 
-    /// Rows `y0..` of the image (`rows` holds whole rows), tile by tile,
-    /// [`IN_FLIGHT`] rays at a time advanced in turn.
-    fn band(&self, y0: usize, rows: &mut [[f32; 4]]) -> RenderStats {
+    /// Rows `y0..y0 + band_rows` of the image, tile by tile, [`IN_FLIGHT`]
+    /// rays at a time advanced in turn; `finish(walker, index)` takes each
+    /// finished ray's light (`index`: the pixel's index within the band).
+    pub(crate) fn band(
+        &self,
+        y0: usize,
+        band_rows: usize,
+        new_walker: fn() -> Walker<I::Sample>,
+        mut finish: impl FnMut(&mut Walker<I::Sample>, usize),
+    ) -> RenderStats {
         let mut stats = RenderStats::default();
-        let band_rows = rows.len() / self.width;
         // Pixels of the band in tile order.
         let mut pixels = (0..self.width).step_by(TILE).flat_map(|x0| {
             (0..band_rows)
                 .flat_map(move |dy| (x0..(x0 + TILE).min(self.width)).map(move |x| (x, dy)))
         });
         let mut slots: [(Walker<I::Sample>, usize); IN_FLIGHT] =
-            std::array::from_fn(|_| (Walker::new(), usize::MAX));
+            std::array::from_fn(|_| (new_walker(), usize::MAX));
         let mut active = 0;
         for slot in &mut slots {
             if let Some((x, dy)) = pixels.next() {
@@ -347,10 +368,7 @@ impl<I: SegmentIntegrator + ?Sized> Frame<'_, I> {
                     continue;
                 }
                 stats.add(&walker.counters);
-                let light = walker.light;
-                let alpha = 1.0 - light.transmittance.element_sum() / 3.0;
-                let c = light.color;
-                rows[*index] = [c.x, c.y, c.z, alpha];
+                finish(walker, *index);
                 match pixels.next() {
                     Some((x, dy)) => {
                         self.start(walker, x, y0 + dy);

@@ -6,10 +6,13 @@
 //! - [`render_cpu`]: one ray per pixel; each enters the mesh through the
 //!   boundary face the BVH finds, walks tet to tet through exit faces chosen
 //!   by the shared watertight predicate, and composites the integrated
-//!   segments front to back.
+//!   segments front to back;
+//! - [`render_fragments`]: the same rays, the light of each interval inside
+//!   the mesh kept apart as a [`Fragment`] (for compositing across pieces).
 
 pub mod camera;
 mod cpu;
+mod fragment;
 pub mod image;
 pub mod order;
 mod scene;
@@ -21,6 +24,7 @@ pub use cpu::{
     render_cpu, render_cpu_with_progress, render_scalar, render_scalar_with_progress, trace_pixel,
     RayTrace, RenderError, RenderOptions, RenderOutput, RenderStats,
 };
+pub use fragment::{render_fragments, render_scalar_fragments, Fragment, FragmentOutput};
 pub use image::{Image, ImageError};
 pub use order::Reorder;
 pub use scene::{CellOrder, Scene, SceneError, WalkTet, FINAL_EXIT};

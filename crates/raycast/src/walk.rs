@@ -70,6 +70,17 @@ impl RayLight {
     };
 }
 
+/// The light of one contiguous interval of a ray inside the mesh (from an
+/// entry through a boundary face to the next exit through one), composited
+/// alone: what a split walk emits instead of compositing the whole ray.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Interval {
+    /// Distance of the interval's entry along the ray, clipped at the ray
+    /// origin (where its first segment starts).
+    pub depth: f32,
+    pub light: RayLight,
+}
+
 /// For apex `a` (the vertex opposite the entry face): its three other
 /// vertices in increasing order, and for each pattern of the signs of the
 /// edges apex -> k (bit `i` set when the edge to the `i`-th of them is
@@ -299,6 +310,13 @@ pub(crate) struct Walker<S> {
     t_in: f32,
     s_in: f32,
     sample_in: Option<S>,
+    /// Whether the ray's light is kept per interval ([`Walker::intervals`])
+    /// instead of composited along the whole ray.
+    split: bool,
+    /// The finished intervals of a split walk, front to back.
+    pub intervals: Vec<Interval>,
+    interval_depth: f32,
+    interval_segments: u64,
 }
 
 impl<S: Copy> Walker<S> {
@@ -317,7 +335,34 @@ impl<S: Copy> Walker<S> {
             t_in: 0.0,
             s_in: 0.0,
             sample_in: None,
+            split: false,
+            intervals: Vec::new(),
+            interval_depth: 0.0,
+            interval_segments: 0,
         }
+    }
+
+    /// A walker that keeps each interval's light apart (see [`Interval`]):
+    /// never merged across a gap, so intervals of other meshes can be
+    /// composited in between.
+    pub fn split() -> Self {
+        Walker {
+            split: true,
+            ..Walker::new()
+        }
+    }
+
+    /// Ends the current interval of a split walk: keeps its light if a
+    /// segment was integrated in it, and starts the next from clear.
+    pub fn close_interval(&mut self) {
+        if self.interval_segments > 0 {
+            self.intervals.push(Interval {
+                depth: self.interval_depth,
+                light: self.light,
+            });
+        }
+        self.light = RayLight::CLEAR;
+        self.interval_segments = 0;
     }
 
     /// Starts a ray from distance `t_start` on (`-inf` when its origin may
@@ -331,6 +376,8 @@ impl<S: Copy> Walker<S> {
         self.t_cursor = t_start;
         self.skip.clear();
         self.skip_t = f32::NAN;
+        self.intervals.clear();
+        self.interval_segments = 0;
     }
 
     /// One BVH query or one tetrahedron; returns whether the ray goes on.
@@ -381,6 +428,7 @@ impl<S: Copy> Walker<S> {
         self.t_in = hit.t.max(self.t_cursor);
         self.s_in = self.cell.crossing(self.f_in).1;
         self.sample_in = Some(integrator.sample(self.s_in));
+        self.interval_depth = self.t_in.max(0.0);
         self.phase = Phase::Walking;
     }
 
@@ -427,6 +475,7 @@ impl<S: Copy> Walker<S> {
                 light.color += light.transmittance * emitted;
                 light.transmittance *= transmittance;
                 counters.segments += 1;
+                self.interval_segments += 1;
                 // 1 - mean(T) >= threshold, without a division.
                 if light.transmittance.element_sum() <= limits.stop_below_sum {
                     self.phase = Phase::Done;
@@ -447,6 +496,9 @@ impl<S: Copy> Walker<S> {
                 Phase::Entering
             };
             self.t_cursor = t_out;
+            if self.split {
+                self.close_interval();
+            }
             return;
         }
         self.tet = (next >> 2) as usize;

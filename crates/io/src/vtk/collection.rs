@@ -141,6 +141,19 @@ fn folder_of(path: &Path) -> PathBuf {
 /// A parallel file's pieces, ghost cells dropped, welded (global ids kept).
 fn parallel_raw(path: &Path) -> Result<CellGrid, VtkError> {
     let name = path.display().to_string();
+    let sources = piece_paths(path)?;
+    let grids = sources
+        .par_iter()
+        .map(|piece| serial_raw(piece))
+        .collect::<Result<Vec<_>, _>>()?;
+    let mut grid = weld(grids, &name)?;
+    grid.pieces.pieces = sources.len();
+    Ok(grid)
+}
+
+/// The files of a parallel file's pieces, in its order; each must exist.
+pub(super) fn piece_paths(path: &Path) -> Result<Vec<PathBuf>, VtkError> {
+    let name = path.display().to_string();
     let root = xml_tree(&read_path(path)?, &name)?;
     let dataset = root
         .children
@@ -164,8 +177,8 @@ fn parallel_raw(path: &Path) -> Result<CellGrid, VtkError> {
         });
     }
     let folder = folder_of(path);
-    let grids = sources
-        .par_iter()
+    sources
+        .iter()
         .map(|&source| {
             let piece = folder.join(source);
             if !piece.is_file() {
@@ -176,17 +189,14 @@ fn parallel_raw(path: &Path) -> Result<CellGrid, VtkError> {
                     path: piece.display().to_string(),
                 });
             }
-            serial_raw(&piece)
+            Ok(piece)
         })
-        .collect::<Result<Vec<_>, _>>()?;
-    let mut grid = weld(grids, &name)?;
-    grid.pieces.pieces = sources.len();
-    Ok(grid)
+        .collect()
 }
 
 /// A serial XML file's raw grid with its ghost cells dropped; the places
 /// its messages name start with the file, as several files are joined.
-fn serial_raw(path: &Path) -> Result<CellGrid, VtkError> {
+pub(super) fn serial_raw(path: &Path) -> Result<CellGrid, VtkError> {
     let name = path.display().to_string();
     let mut grid = vtu_read::read_raw(&read_path(path)?, &name)?;
     drop_ghosts(&mut grid, &name)?;

@@ -22,6 +22,7 @@ mod error;
 mod image_grid;
 mod legacy;
 mod numeric;
+mod piece_subset;
 mod xml;
 
 use std::path::Path;
@@ -29,6 +30,7 @@ use std::path::Path;
 pub use error::VtkError;
 pub use image_grid::{read_image_grid, ImageGrid};
 pub use legacy::write::write_legacy;
+pub use piece_subset::{parallel_piece_count, read_piece_subset, PieceSubset};
 pub use xml::stream::{write_vtu_streamed, TetChunks, VtuIndex, VtuStreamOptions};
 pub use xml::write::{write_vtu, write_vtu_with, VtuOptions};
 

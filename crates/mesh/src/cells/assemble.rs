@@ -87,10 +87,19 @@ impl CellGrid {
 }
 
 /// Checks what the reader can see, splits the cells and builds the mesh.
-pub fn assemble_with(
+pub fn assemble_with(grid: CellGrid, file: &str, opts: &ReadOptions) -> Result<VtkRead, CellError> {
+    let origin = centring(&grid.points);
+    assemble_at(grid, file, opts, origin)
+}
+
+/// [`assemble_with`] with the points stored relative to `origin` (a part
+/// of a mesh split over processes takes the whole mesh's, so that shared
+/// points round to the same f32 coordinates in every part).
+pub fn assemble_at(
     mut grid: CellGrid,
     file: &str,
     opts: &ReadOptions,
+    origin: DVec3,
 ) -> Result<VtkRead, CellError> {
     let npoints = grid.points.len() / 3;
     if u32::try_from(npoints).is_err() {
@@ -101,7 +110,6 @@ pub fn assemble_with(
             value: npoints.to_string(),
         });
     }
-    let origin = centring(&grid.points);
     let mut points = finite_points(&grid.points, origin, &grid.points_section, file)?;
     separate_inline_faces(&mut grid, file)?;
     let mut warnings = std::mem::take(&mut grid.warnings);

@@ -44,7 +44,7 @@ mod split;
 mod split_quadratic;
 mod structured_grid;
 
-pub use assemble::{assemble_with, per_tuple, to_f32, CellArray, CellGrid};
+pub use assemble::{assemble_at, assemble_with, per_tuple, to_f32, CellArray, CellGrid};
 pub use cell_types::{classify, type_name, CellKind};
 pub use error::CellError;
 pub use pieces::{drop_ghosts, drop_global_ids, finish_grid, merge_arrays, weld};

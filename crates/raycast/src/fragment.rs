@@ -1,0 +1,137 @@
+//! Per-interval ray fragments, for compositing rays split over several
+//! meshes (the pieces of a partitioned mesh on different processes).
+//!
+//! A ray crosses a mesh in one or more intervals, each from an entry
+//! through a boundary face to the next exit through one. The light of each
+//! interval, composited alone, is one [`Fragment`]. Intervals are never
+//! merged across a gap, so the intervals of other meshes that fall in the
+//! gap can be composited in between: sorted by entry depth and blended
+//! front to back, the fragments of every piece give the ray's integral
+//! (compositing is associative, and intervals of disjoint pieces never
+//! overlap in depth).
+
+use std::time::Instant;
+
+use rayon::prelude::*;
+use tetray_integrate::{KernelVisitor, ScalarIntegrator, SegmentKernel, Typed};
+
+use crate::camera::Camera;
+use crate::cpu::{in_pool, Frame, RenderError, RenderOptions, RenderStats, BAND_ROWS};
+use crate::scene::Scene;
+use crate::walk::{SegmentIntegrator, WalkLimits, Walker};
+
+/// The light of one interval of one pixel's ray inside a mesh: 32 bytes,
+/// sent as they are between processes.
+#[derive(Debug, Clone, Copy, PartialEq, Default, bytemuck::Pod, bytemuck::Zeroable)]
+#[repr(C)]
+pub struct Fragment {
+    /// The pixel, `y * width + x` (row 0 at the top).
+    pub pixel: u32,
+    /// Distance along the ray where the interval starts (world units,
+    /// clipped at the ray origin): the compositing order.
+    pub depth: f32,
+    /// Premultiplied colour the interval sends towards the eye.
+    pub color: [f32; 3],
+    /// Per-channel transmittance of the interval.
+    pub transmittance: [f32; 3],
+}
+
+impl Fragment {
+    /// A fragment that changes nothing: no light, full transmittance.
+    pub fn is_clear(&self) -> bool {
+        self.color == [0.0; 3] && self.transmittance == [1.0; 3]
+    }
+}
+
+/// Every fragment of a frame, and what the rays did.
+#[derive(Debug, Clone)]
+pub struct FragmentOutput {
+    /// Grouped by pixel (in the order the rays were cast), front to back
+    /// within a pixel.
+    pub fragments: Vec<Fragment>,
+    pub stats: RenderStats,
+}
+
+/// Casts every pixel's ray through `scene` and keeps the light of each
+/// interval apart: one [`Fragment`] per interval in which a segment was
+/// integrated.
+///
+/// Early termination would cut a ray on what this mesh alone knows, so it
+/// is not applied: `opts.early_termination` must be 1. A ray stops inside
+/// an interval only once its transmittance is exactly zero there, which
+/// nothing composited behind it can change.
+pub fn render_fragments<I: SegmentIntegrator + ?Sized>(
+    scene: &Scene,
+    camera: &Camera,
+    integrator: &I,
+    opts: &RenderOptions,
+) -> Result<FragmentOutput, RenderError> {
+    if opts.early_termination != 1.0 {
+        return Err(RenderError::BadEarlyTermination(opts.early_termination));
+    }
+    let rays = camera.pixel_rays(opts.width, opts.height)?;
+    let mut frame = Frame::new(scene, camera, &rays, integrator, opts);
+    frame.limits = WalkLimits {
+        stop_below_sum: 0.0,
+        ..frame.limits
+    };
+    let (width, height) = (frame.width, frame.height);
+    let start = Instant::now();
+    let bands = in_pool(opts.threads, || {
+        (0..height.div_ceil(BAND_ROWS))
+            .into_par_iter()
+            .map(|band| {
+                let y0 = band * BAND_ROWS;
+                let rows = BAND_ROWS.min(height - y0);
+                let mut fragments = Vec::new();
+                let stats = frame.band(y0, rows, Walker::split, |walker, index| {
+                    walker.close_interval();
+                    let pixel = (y0 * width + index) as u32;
+                    fragments.extend(walker.intervals.iter().map(|i| Fragment {
+                        pixel,
+                        depth: i.depth,
+                        color: i.light.color.to_array(),
+                        transmittance: i.light.transmittance.to_array(),
+                    }));
+                });
+                (fragments, stats)
+            })
+            .collect::<Vec<_>>()
+    })?;
+    let mut stats = RenderStats::default();
+    let mut fragments = Vec::with_capacity(bands.iter().map(|b| b.0.len()).sum());
+    for (band, band_stats) in bands {
+        fragments.extend(band);
+        stats = stats.merge(band_stats);
+    }
+    stats.elapsed = start.elapsed();
+    let (lo, hi) = scene.bounds();
+    stats.eye_inside_bounds = camera.is_inside_bounds(lo, hi);
+    Ok(FragmentOutput { fragments, stats })
+}
+
+/// [`render_fragments`] with a transfer-function integrator, the walk
+/// compiled for its method.
+pub fn render_scalar_fragments(
+    scene: &Scene,
+    camera: &Camera,
+    integrator: &ScalarIntegrator,
+    opts: &RenderOptions,
+) -> Result<FragmentOutput, RenderError> {
+    struct Render<'a> {
+        scene: &'a Scene,
+        camera: &'a Camera,
+        opts: &'a RenderOptions,
+    }
+    impl KernelVisitor for Render<'_> {
+        type Output = Result<FragmentOutput, RenderError>;
+        fn visit<K: SegmentKernel>(self, integrator: Typed<'_, K>) -> Self::Output {
+            render_fragments(self.scene, self.camera, &integrator, self.opts)
+        }
+    }
+    integrator.dispatch(Render {
+        scene,
+        camera,
+        opts,
+    })
+}

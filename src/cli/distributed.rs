@@ -1,0 +1,579 @@
+//! `render`, `bench` and `compare` distributed over MPI ranks (feature
+//! `mpi`): each rank loads its part of the mesh (a run of a parallel
+//! file's pieces, or a spatial slab of a single file's tetrahedra), the
+//! ranks agree on what the whole mesh gives the single-process render
+//! (origin, bounds, field and range, unit distance, mean chord), each casts
+//! every pixel's ray through its part into per-interval fragments, and the
+//! fragments are composited on the ranks owning their pixels
+//! (`tetray_distributed`). Rank 0 writes the image and the report.
+//!
+//! Distributed when started by `mpirun` with more than one rank, or with
+//! `--distributed` (then also on one rank); otherwise the commands run in
+//! one process as without the feature, and MPI is not initialised.
+
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+use anyhow::{bail, Context};
+use clap::Args;
+use glam::DVec3;
+use serde::Serialize;
+use tetray_distributed::mpi::topology::SimpleCommunicator;
+use tetray_distributed::mpi::traits::*;
+use tetray_distributed::transport::reduce_bounds;
+use tetray_distributed::{
+    agree, pieces_for_rank, render_distributed, spatial_split, DistributedFrame, FrameReport,
+};
+use tetray_io::vtk::{parallel_piece_count, read_piece_subset};
+use tetray_mesh::{centring_origin, LoadedMesh, ScalarField, TetMesh, Topology};
+use tetray_raycast::{Camera, Image, RenderOptions, Scene};
+
+use super::args::{CameraArgs, IntegratorArgs, MeshArgs, RendererArg, WalkArgs};
+use super::scene;
+
+/// The flags of a distributed run.
+#[derive(Debug, Clone, Args)]
+pub struct DistributedArgs {
+    /// Render distributed over the MPI ranks even when there is one (it is
+    /// by default whenever mpirun starts more than one).
+    #[arg(long)]
+    pub distributed: bool,
+    /// Edge in pixels of the image tiles dealt out to the ranks, which
+    /// composite the fragments of their tiles' pixels.
+    #[arg(long, value_name = "PIXELS", default_value_t = tetray_distributed::DEFAULT_TILE,
+          value_parser = clap::value_parser!(u32).range(1..))]
+    pub tile: u32,
+}
+
+impl DistributedArgs {
+    /// Whether to render distributed: `--distributed`, or a launcher's
+    /// world of more than one process (Open MPI's and MPICH's variables,
+    /// read before initialising MPI so a plain run never does).
+    pub fn wanted(&self) -> bool {
+        let launched = ["OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE"]
+            .iter()
+            .filter_map(|v| std::env::var(v).ok())
+            .filter_map(|v| v.parse::<usize>().ok())
+            .any(|n| n > 1);
+        self.distributed || launched
+    }
+}
+
+/// This rank's part of the mesh and what every rank agreed on.
+struct Part {
+    name: String,
+    scene: Option<Scene>,
+    camera: Camera,
+    integrator: tetray_integrate::ScalarIntegrator,
+    method: tetray_integrate::Method,
+    field: String,
+    tets_total: u64,
+    load_time: Duration,
+    setup_time: Duration,
+}
+
+/// What `prepare` takes, borrowed from any of the three commands.
+struct FrameInput<'a> {
+    mesh: &'a MeshArgs,
+    integrator: &'a IntegratorArgs,
+    camera: &'a CameraArgs,
+    walk: &'a WalkArgs,
+    size: (u32, u32),
+}
+
+/// Runs `work` on the world communicator; an error on any rank is printed
+/// with the rank and aborts every rank (a rank left waiting in a
+/// collective would hang).
+fn with_world(work: impl FnOnce(&SimpleCommunicator) -> anyhow::Result<()>) -> anyhow::Result<()> {
+    let Some(universe) = tetray_distributed::mpi::initialize() else {
+        bail!("MPI was already initialised");
+    };
+    let world = universe.world();
+    if let Err(e) = work(&world) {
+        let message = format!("{e:#}");
+        eprintln!(
+            "error: rank {}: {}",
+            world.rank(),
+            message.split_whitespace().collect::<Vec<_>>().join(" ")
+        );
+        world.abort(1);
+    }
+    Ok(())
+}
+
+/// Loads this rank's part: pieces `pieces_for_rank` of a parallel file
+/// (with the whole mesh's origin), or a spatial slab of any other mesh
+/// (loaded whole on every rank). Returns the part (`None`: nothing for this
+/// rank), its share of the input cells and the origin.
+fn load_part<C: Communicator>(
+    comm: &C,
+    args: &MeshArgs,
+) -> anyhow::Result<(String, Option<LoadedMesh>, usize, DVec3)> {
+    let (rank, size) = (comm.rank() as usize, comm.size() as usize);
+    let parallel = args.mesh.as_deref().filter(|p| is_parallel(p));
+    if let Some(path) = parallel {
+        let name = path.display().to_string();
+        if !path.is_file() {
+            bail!("{name}: no such file");
+        }
+        let pieces = parallel_piece_count(path)?;
+        let mine = pieces_for_rank(pieces, rank, size);
+        let subset = if mine.is_empty() {
+            None
+        } else {
+            Some(read_piece_subset(path, mine)?)
+        };
+        let bounds = reduce_bounds(comm, subset.as_ref().and_then(|s| s.bounds()))
+            .with_context(|| format!("{name}: no points in any piece"))?;
+        let origin = centring_origin(bounds.0, bounds.1);
+        let options = tetray_io::LoadOptions {
+            linearize: args.linearize.into(),
+            ..tetray_io::LoadOptions::default()
+        };
+        let loaded = match subset {
+            Some(s) => Some(tetray_io::load_piece_subset(s, origin, &options)?),
+            None => None,
+        };
+        let cells = loaded.as_ref().map_or(0, LoadedMesh::input_cells);
+        return Ok((name, loaded, cells, origin));
+    }
+    let input = scene::load_mesh(args)?;
+    let whole = &input.loaded;
+    let mesh = spatial_split(&whole.mesh, rank, size);
+    // The whole mesh's cell count, counted once (for the unit distance).
+    let cells = if rank == 0 { input.input_cells() } else { 0 };
+    let origin = whole.origin();
+    let loaded = if mesh.tets.is_empty() {
+        None
+    } else {
+        let topology = Topology::build(&mesh).context("the part's topology")?;
+        Some(LoadedMesh {
+            mesh,
+            topology,
+            report: whole.report.clone(),
+        })
+    };
+    Ok((input.name, loaded, cells, origin))
+}
+
+fn is_parallel(path: &Path) -> bool {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    matches!(ext.as_deref(), Some("pvtu" | "pvts" | "pvtr" | "pvti"))
+}
+
+/// Loads this rank's part and builds what `scene::prepare` builds for the
+/// whole mesh, from the values the ranks agree on.
+/// Progress lines go to stdout, or to stderr with `quiet` (the bench's
+/// stdout holds only its JSON); rank 0 alone writes them.
+fn prepare<C: Communicator>(comm: &C, input: &FrameInput<'_>, quiet: bool) -> anyhow::Result<Part> {
+    let rank0 = comm.rank() == 0;
+    let log = |line: String| match (rank0, quiet) {
+        (false, _) => {}
+        (true, false) => println!("{line}"),
+        (true, true) => eprintln!("{line}"),
+    };
+    if !matches!(input.walk.renderer, RendererArg::Auto | RendererArg::Cpu) {
+        bail!("a distributed render uses the CPU ray caster: --renderer auto or cpu");
+    }
+    if input.walk.early_termination != 1.0 {
+        bail!(
+            "a distributed render does not terminate rays early (a rank cannot know the light \
+             in front of its fragments): leave --early-termination at 1"
+        );
+    }
+    let args = input.integrator;
+    let tf_text = match &args.tf {
+        Some(path) => Some(
+            std::fs::read_to_string(path)
+                .with_context(|| format!("--tf {}: cannot read", path.display()))?,
+        ),
+        None => None,
+    };
+    let start = Instant::now();
+    let (name, loaded, cells, origin) = load_part(comm, input.mesh)?;
+    let load_time = start.elapsed();
+    let start = Instant::now();
+    let agreed = agree(
+        comm,
+        loaded.as_ref().map(|l| &l.mesh),
+        cells,
+        args.scalar.as_deref(),
+    )?;
+    let summary = &agreed.summary;
+    log(format!(
+        "loaded {name} over {} ranks: {} tetrahedra in all, this rank {} ({:.3} s)",
+        comm.size(),
+        summary.tets,
+        loaded.as_ref().map_or(0, |l| l.mesh.tets.len()),
+        load_time.as_secs_f64()
+    ));
+    let field = agreed.field.clone().unwrap_or_else(|| {
+        if rank0 {
+            eprintln!("warning: {name} has no point scalar field: rendering a uniform volume");
+        }
+        scene::SOLID.to_string()
+    });
+    let scene = match loaded {
+        Some(mut l) => {
+            if agreed.field.is_none() {
+                add_zero_field(&mut l.mesh, &field);
+            }
+            let faces = l.topology.boundary_faces.len();
+            let preset = super::args::bvh_preset_for(input.walk.bvh_preset, faces);
+            Some(
+                Scene::new(l.mesh, l.topology, &field, preset)
+                    .with_context(|| format!("{name}: preparing this rank's part"))?,
+            )
+        }
+        None => None,
+    };
+    let bounds = summary.bounds;
+    let camera = scene::build_camera(input.camera, bounds, input.size, origin)?;
+    if rank0 {
+        scene::warn_if_inside(&camera, bounds);
+    }
+    let unit_distance = args
+        .unit_distance
+        .unwrap_or_else(|| summary.paraview_unit_distance());
+    let range = agreed.range;
+    let tf = scene::transfer_function(
+        args,
+        tf_text.as_deref(),
+        &field,
+        range,
+        bounds,
+        unit_distance,
+    )?;
+    let options = scene::integrator_options(args, unit_distance, summary.mean_chord(), range);
+    let (integrator, _) = scene::integrator(args, &tf, &options, &field, &log)?;
+    Ok(Part {
+        name,
+        scene,
+        camera,
+        integrator,
+        method: args.integrator,
+        field,
+        tets_total: summary.tets,
+        load_time,
+        setup_time: start.elapsed(),
+    })
+}
+
+fn add_zero_field(mesh: &mut TetMesh, name: &str) {
+    mesh.fields.push(ScalarField {
+        name: name.into(),
+        values: vec![0.0; mesh.points.len()],
+    });
+}
+
+fn render_options(walk: &WalkArgs, (width, height): (u32, u32)) -> RenderOptions {
+    RenderOptions {
+        width,
+        height,
+        early_termination: 1.0,
+        max_steps_per_ray: walk.max_steps,
+        threads: None,
+    }
+}
+
+fn frame<C: Communicator>(
+    comm: &C,
+    part: &Part,
+    camera: &Camera,
+    opts: &RenderOptions,
+    tile: u32,
+) -> anyhow::Result<Option<DistributedFrame>> {
+    Ok(render_distributed(
+        comm,
+        part.scene.as_ref(),
+        camera,
+        &part.integrator,
+        opts,
+        tile,
+    )?)
+}
+
+/// `tetray render`, distributed; `None` when not asked for.
+pub fn render(args: &super::args::RenderArgs) -> Option<anyhow::Result<()>> {
+    if !args.distributed.wanted() {
+        return None;
+    }
+    Some(run_render(args))
+}
+
+fn run_render(args: &super::args::RenderArgs) -> anyhow::Result<()> {
+    let output = &args.output.output;
+    let format = super::render::image_format(output)?;
+    scene::configure_threads(args.walk.threads)?;
+    with_world(|world| {
+        let input = FrameInput {
+            mesh: &args.mesh,
+            integrator: &args.integrator,
+            camera: &args.camera,
+            walk: &args.walk,
+            size: args.output.size,
+        };
+        let part = prepare(world, &input, false)?;
+        let opts = render_options(&args.walk, args.output.size);
+        let start = Instant::now();
+        let Some(frame) = frame(world, &part, &part.camera, &opts, args.distributed.tile)? else {
+            return Ok(());
+        };
+        let (w, h) = args.output.size;
+        println!(
+            "rendered {w}x{h} in {:.3} s: {} segments in all",
+            start.elapsed().as_secs_f64(),
+            frame.report.sum(|r| r.segments)
+        );
+        println!("{}", frame.report.describe());
+        super::render::write_image(&frame.image, output, format, args.output.background)?;
+        let shown = std::path::absolute(output).unwrap_or_else(|_| output.clone());
+        println!("wrote {}", shown.display());
+        Ok(())
+    })
+}
+
+/// `tetray bench`, distributed: timed frames as JSON on rank 0.
+pub fn bench(args: &super::bench::BenchArgs) -> Option<anyhow::Result<()>> {
+    if !args.distributed.wanted() {
+        return None;
+    }
+    Some(run_bench(args))
+}
+
+/// The bench's JSON: medians over the frames of the slowest rank's stage
+/// times, and the per-fragment and per-byte costs the README's model of
+/// larger runs uses.
+#[derive(Debug, Serialize)]
+struct BenchJson {
+    renderer: &'static str,
+    ranks: usize,
+    threads_per_rank: usize,
+    mesh: String,
+    tets: u64,
+    size: String,
+    integrator: &'static str,
+    field: String,
+    frames: u32,
+    tile: u32,
+    ms_per_frame_median: f64,
+    trace_ms_max_median: f64,
+    trace_ms_mean_median: f64,
+    fragments_per_frame: f64,
+    fragments_per_pixel: f64,
+    bytes_exchanged_per_frame: f64,
+    bytes_gathered_per_frame: f64,
+    wait_ms_median: f64,
+    exchange_ms_median: f64,
+    sort_ms_median: f64,
+    blend_ms_median: f64,
+    gather_ms_median: f64,
+    /// Sort and blend time per fragment received, on the slowest rank.
+    sort_ns_per_fragment: f64,
+    blend_ns_per_fragment: f64,
+    /// Exchange time per byte a rank sent (inverse bandwidth with latency).
+    exchange_ns_per_byte: f64,
+    load_s: f64,
+    setup_s: f64,
+}
+
+fn run_bench(args: &super::bench::BenchArgs) -> anyhow::Result<()> {
+    scene::configure_threads(args.walk.threads)?;
+    with_world(|world| {
+        let input = FrameInput {
+            mesh: &args.mesh,
+            integrator: &args.integrator,
+            camera: &args.camera,
+            walk: &args.walk,
+            size: args.size,
+        };
+        let part = prepare(world, &input, true)?;
+        let opts = render_options(&args.walk, args.size);
+        let tile = args.distributed.tile;
+        let mut camera = part.camera;
+        let orbit_step = args.orbit_step.unwrap_or(360.0 / args.frames as f32);
+        frame(world, &part, &camera, &opts, tile).context("warm-up frame")?;
+        let mut times = Vec::new();
+        let mut reports: Vec<FrameReport> = Vec::new();
+        for _ in 0..args.frames {
+            world.barrier();
+            let start = Instant::now();
+            let out = frame(world, &part, &camera, &opts, tile)?;
+            times.push(start.elapsed().as_secs_f64() * 1e3);
+            reports.extend(out.map(|f| f.report));
+            camera.azimuth(orbit_step).context("orbiting the camera")?;
+            camera
+                .orthogonalize_view_up()
+                .context("orbiting the camera")?;
+        }
+        if world.rank() != 0 {
+            return Ok(());
+        }
+        let med =
+            |f: &dyn Fn(&FrameReport) -> f64| median(&reports.iter().map(f).collect::<Vec<_>>());
+        let ms = 1e3;
+        let received_max = med(&|r| r.max(|x| x.fragments_received)).max(1.0);
+        let sent_max = med(&|r| r.max(|x| x.bytes_exchanged)).max(1.0);
+        let json = BenchJson {
+            renderer: "cpu-distributed",
+            ranks: world.size() as usize,
+            threads_per_rank: rayon::current_num_threads(),
+            mesh: part.name.clone(),
+            tets: part.tets_total,
+            size: format!("{}x{}", args.size.0, args.size.1),
+            integrator: part.method.name(),
+            field: part.field.clone(),
+            frames: args.frames,
+            tile,
+            ms_per_frame_median: median(&times),
+            trace_ms_max_median: med(&|r| r.max(|x| x.trace_s)) * ms,
+            trace_ms_mean_median: med(&|r| r.mean(|x| x.trace_s)) * ms,
+            fragments_per_frame: med(&|r| r.sum(|x| x.fragments_sent)),
+            fragments_per_pixel: med(&|r| r.fragments_per_pixel()),
+            bytes_exchanged_per_frame: med(&|r| r.sum(|x| x.bytes_exchanged)),
+            bytes_gathered_per_frame: med(&|r| r.sum(|x| x.bytes_gathered)),
+            wait_ms_median: med(&|r| r.max(|x| x.wait_s)) * ms,
+            exchange_ms_median: med(&|r| r.max(|x| x.exchange_s)) * ms,
+            sort_ms_median: med(&|r| r.max(|x| x.sort_s)) * ms,
+            blend_ms_median: med(&|r| r.max(|x| x.blend_s)) * ms,
+            gather_ms_median: med(&|r| r.max(|x| x.gather_s)) * ms,
+            sort_ns_per_fragment: med(&|r| r.max(|x| x.sort_s)) * 1e9 / received_max,
+            blend_ns_per_fragment: med(&|r| r.max(|x| x.blend_s)) * 1e9 / received_max,
+            exchange_ns_per_byte: med(&|r| r.max(|x| x.exchange_s)) * 1e9 / sent_max,
+            load_s: part.load_time.as_secs_f64(),
+            setup_s: part.setup_time.as_secs_f64(),
+        };
+        println!("{}", serde_json::to_string_pretty(&json)?);
+        Ok(())
+    })
+}
+
+fn median(values: &[f64]) -> f64 {
+    let mut sorted = values.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    match sorted.len() {
+        0 => 0.0,
+        n if n % 2 == 1 => sorted[n / 2],
+        n => 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]),
+    }
+}
+
+/// `tetray compare`, distributed: the composited image against the
+/// single-process CPU render of the whole mesh (rank 0 renders it too).
+pub fn compare(args: &super::compare::CompareArgs) -> Option<anyhow::Result<()>> {
+    if !args.distributed.wanted() {
+        return None;
+    }
+    Some(run_compare(args))
+}
+
+#[derive(Debug, Serialize)]
+struct CompareJson {
+    ranks: usize,
+    mesh: String,
+    size: String,
+    integrator: &'static str,
+    /// Largest absolute difference over premultiplied RGBA.
+    max_abs_error: f32,
+    mean_abs_error: f64,
+    /// Pixels with a channel differing by more than 1e-5.
+    pixels_over_1e5: usize,
+    pixels_lit: usize,
+    distributed_ms: f64,
+    single_ms: f64,
+}
+
+fn run_compare(args: &super::compare::CompareArgs) -> anyhow::Result<()> {
+    scene::configure_threads(args.threads)?;
+    let walk = WalkArgs {
+        renderer: RendererArg::Cpu,
+        early_termination: 1.0,
+        max_steps: None,
+        threads: args.threads,
+        bvh_preset: Some(args.bvh_preset),
+        sort: tetray_project::SortKind::Mpvonc,
+        no_adaptive_tf: false,
+    };
+    with_world(|world| {
+        let input = FrameInput {
+            mesh: &args.mesh,
+            integrator: &args.integrator,
+            camera: &args.camera,
+            walk: &walk,
+            size: args.size,
+        };
+        let part = prepare(world, &input, false)?;
+        let opts = render_options(&walk, args.size);
+        let start = Instant::now();
+        let out = frame(world, &part, &part.camera, &opts, args.distributed.tile)?;
+        let distributed_ms = start.elapsed().as_secs_f64() * 1e3;
+        let Some(out) = out else { return Ok(()) };
+        println!("{}", out.report.describe());
+        let frame_args = scene::FrameArgs {
+            mesh: &args.mesh,
+            integrator: &args.integrator,
+            camera: &args.camera,
+            walk: &walk,
+            size: args.size,
+        };
+        let setup = scene::prepare(frame_args, &|line| println!("single process: {line}"))?;
+        let start = Instant::now();
+        let single =
+            tetray_raycast::render_scalar(setup.scene()?, &setup.camera, &setup.integrator, &opts)?;
+        let single_ms = start.elapsed().as_secs_f64() * 1e3;
+        let json = difference(
+            &out.image,
+            &single.image,
+            world.size() as usize,
+            &part,
+            args,
+        );
+        let json = CompareJson {
+            distributed_ms,
+            single_ms,
+            ..json
+        };
+        std::fs::create_dir_all(&args.output)
+            .with_context(|| format!("-o {}: cannot create", args.output.display()))?;
+        out.image.write_exr(&args.output.join("distributed.exr"))?;
+        single.image.write_exr(&args.output.join("single.exr"))?;
+        let text = serde_json::to_string_pretty(&json)?;
+        std::fs::write(args.output.join("table.json"), &text)
+            .with_context(|| format!("writing {}", args.output.display()))?;
+        println!("{text}");
+        Ok(())
+    })
+}
+
+fn difference(
+    a: &Image,
+    b: &Image,
+    ranks: usize,
+    part: &Part,
+    args: &super::compare::CompareArgs,
+) -> CompareJson {
+    let mut max = 0.0f32;
+    let (mut sum, mut over, mut lit) = (0.0f64, 0, 0);
+    for (p, q) in a.rgba.iter().zip(&b.rgba) {
+        let d = (0..4).map(|c| (p[c] - q[c]).abs()).fold(0.0f32, f32::max);
+        max = max.max(d);
+        sum += f64::from(d);
+        over += usize::from(d > 1e-5);
+        lit += usize::from(q[3] > 0.0);
+    }
+    CompareJson {
+        ranks,
+        mesh: part.name.clone(),
+        size: format!("{}x{}", args.size.0, args.size.1),
+        integrator: part.method.name(),
+        max_abs_error: max,
+        mean_abs_error: sum / a.rgba.len().max(1) as f64,
+        pixels_over_1e5: over,
+        pixels_lit: lit,
+        distributed_ms: 0.0,
+        single_ms: 0.0,
+    }
+}
