@@ -230,7 +230,8 @@ pub fn transfer_function(
     Ok(TransferFunction::default_for_range(lo, hi))
 }
 
-/// Points over [0, 1] mapped onto `[lo, hi]`.
+/// Points over [0, 1] mapped onto `[lo, hi]`; none at all: the default
+/// ramp over `[lo, hi]`.
 fn normalized(
     color: &[ColorPoint],
     opacity: &[OpacityPoint],
@@ -238,6 +239,9 @@ fn normalized(
 ) -> Result<TransferFunction, FrameError> {
     if !(lo.is_finite() && hi.is_finite() && lo < hi) {
         bail!("the colour range must be two finite numbers, low < high; got ({lo}, {hi})");
+    }
+    if color.is_empty() && opacity.is_empty() {
+        return Ok(TransferFunction::default_for_range(lo, hi));
     }
     let at = |s: f32| lo + s * (hi - lo);
     let color = color
