@@ -168,7 +168,9 @@ def _from_counts(cells: np.ndarray, ncells: int) -> Tuple[np.ndarray, np.ndarray
 def _pyvista_grid(mesh: Any, name: str) -> "_native.Grid":
     kind = type(mesh).__name__
     if kind == "MultiBlock":
-        mesh = mesh.combine()
+        # One grid, points shared between blocks welded (as the .vtm
+        # reader welds bit-equal points of its blocks).
+        mesh = mesh.combine(merge_points=True)
         kind = type(mesh).__name__
     point_data = {k: mesh.point_data[k] for k in mesh.point_data.keys()}
     cell_data = {k: mesh.cell_data[k] for k in mesh.cell_data.keys()}
@@ -186,8 +188,9 @@ def _pyvista_grid(mesh: Any, name: str) -> "_native.Grid":
         raise ValueError(f"{name}: a PolyData has surface cells only; tetray renders volume cells")
     if not hasattr(mesh, "celltypes"):
         mesh = mesh.cast_to_unstructured_grid()
-    if hasattr(mesh, "cell_connectivity") and hasattr(mesh, "offset"):
-        conn, offs = mesh.cell_connectivity, mesh.offset
+    offsets = "cell_offsets" if hasattr(type(mesh), "cell_offsets") else "offset"
+    if hasattr(mesh, "cell_connectivity") and hasattr(type(mesh), offsets):
+        conn, offs = mesh.cell_connectivity, getattr(mesh, offsets)
     else:
         conn, offs = _from_counts(_ints(mesh.cells, "cells"), mesh.n_cells)
     return _native.Grid.unstructured(
