@@ -210,3 +210,37 @@ pub struct Log<'a> {
     pub info: &'a dyn Fn(String),
     pub warn: &'a dyn Fn(String),
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_oblique_default_applies_only_when_nothing_is_given() {
+        assert_eq!(CameraOptions::default().rotation(), DEFAULT_VIEW);
+        let zero = CameraOptions {
+            azimuth: Some(0.0),
+            ..CameraOptions::default()
+        };
+        assert_eq!(zero.rotation(), (0.0, 0.0));
+        let up = CameraOptions {
+            view_up: Some(Vec3::Z),
+            ..CameraOptions::default()
+        };
+        assert_eq!(up.rotation(), (0.0, 0.0));
+    }
+
+    #[test]
+    fn renderers_by_name() {
+        assert_eq!("GPU".parse::<RendererChoice>(), Ok(RendererChoice::Gpu));
+        assert_eq!(
+            "shear-warp".parse::<RendererChoice>(),
+            Ok(RendererChoice::ShearWarp)
+        );
+        let err = "raytrace".parse::<RendererChoice>().unwrap_err();
+        assert!(err.contains("auto, cpu, gpu, project, shear-warp"), "{err}");
+        for choice in [RendererChoice::Auto, RendererChoice::Project] {
+            assert_eq!(choice.name().parse::<RendererChoice>(), Ok(choice));
+        }
+    }
+}
