@@ -52,13 +52,17 @@ impl FrameError {
     }
 
     /// The whole chain on one line, "step: reason: its reason", as the CLI
-    /// prints errors.
+    /// prints errors; a reason the text already ends with (errors that
+    /// display their source as well as return it) is not repeated.
     pub fn chain(&self) -> String {
         let mut text = self.to_string();
         let mut source = std::error::Error::source(self);
         while let Some(s) = source {
-            text.push_str(": ");
-            text.push_str(&s.to_string());
+            let reason = s.to_string();
+            if !text.ends_with(&reason) {
+                text.push_str(": ");
+                text.push_str(&reason);
+            }
             source = s.source();
         }
         text.split_whitespace().collect::<Vec<_>>().join(" ")
