@@ -390,7 +390,7 @@ fn bad_inputs_fail_with_one_line() {
             "camera",
         ),
         (&["render", "--camera-position", "1,2"], "--camera-position"),
-        (&["render", "-o", "image.jpg"], ".png or .exr"),
+        (&["render", "-o", "image.jpg"], ".png, .exr or .npy"),
         (&["render", "--unit-distance", "-1"], "--unit-distance"),
         (
             &["render", "--early-termination", "0"],

@@ -60,7 +60,7 @@ impl From<LinearizeArg> for tetray_io::vtk::Linearize {
 /// VTK/ParaView camera. Whatever is not given comes from a
 /// `vtkRenderer::ResetCamera` fit of the mesh bounds, looking down -z;
 /// with no camera flag at all, the fit is then turned to an oblique view
-/// ([`DEFAULT_VIEW`]).
+/// ([`tetray_frame::DEFAULT_VIEW`]).
 #[derive(Debug, Clone, Default, Args)]
 pub struct CameraArgs {
     /// Camera position x,y,z (world units: the file's coordinates, read in
@@ -82,7 +82,7 @@ pub struct CameraArgs {
     pub parallel_scale: Option<f32>,
     /// Rotate the camera about the view-up by this many degrees, after the
     /// fit (vtkCamera::Azimuth). Default 0 when any camera flag is given;
-    /// with none, the default view is oblique (see [`DEFAULT_VIEW`]).
+    /// with none, the default view is oblique (see [`tetray_frame::DEFAULT_VIEW`]).
     #[arg(long, value_name = "DEGREES", value_parser = parse_finite, allow_hyphen_values = true)]
     pub azimuth: Option<f32>,
     /// Then rotate it up by this many degrees (vtkCamera::Elevation,
@@ -91,26 +91,32 @@ pub struct CameraArgs {
     pub elevation: Option<f32>,
 }
 
-/// Azimuth and elevation (degrees) after the ResetCamera fit when no
-/// camera flag is given: an oblique view that shows a volume's depth (a
-/// fit alone looks straight down -z and flattens it).
-pub const DEFAULT_VIEW: (f32, f32) = (30.0, 20.0);
-
 impl CameraArgs {
-    /// Azimuth and elevation to apply: VTK's exactly (0 where not given)
-    /// when any of position, focal point, view-up, azimuth or elevation is
-    /// given, or the parallel scale; else [`DEFAULT_VIEW`].
-    pub fn rotation(&self) -> (f32, f32) {
-        let given = self.camera_position.is_some()
-            || self.focal_point.is_some()
-            || self.view_up.is_some()
-            || self.parallel_scale.is_some()
-            || self.azimuth.is_some()
-            || self.elevation.is_some();
-        if given {
-            (self.azimuth.unwrap_or(0.0), self.elevation.unwrap_or(0.0))
-        } else {
-            DEFAULT_VIEW
+    /// The flags (their azimuth and elevation default:
+    /// [`tetray_frame::CameraOptions::rotation`]) as the frame library's options.
+    pub fn options(&self) -> tetray_frame::CameraOptions {
+        tetray_frame::CameraOptions {
+            camera_position: self.camera_position,
+            focal_point: self.focal_point,
+            view_up: self.view_up,
+            view_angle: self.view_angle,
+            parallel_scale: self.parallel_scale,
+            azimuth: self.azimuth,
+            elevation: self.elevation,
+        }
+    }
+}
+
+impl MeshArgs {
+    /// The flags as the frame library's options.
+    pub fn options(&self) -> tetray_frame::MeshOptions {
+        tetray_frame::MeshOptions {
+            mesh: self.mesh.clone(),
+            q: self.q.clone(),
+            time_step: self.time_step,
+            time: self.time,
+            block: self.block.clone(),
+            linearize: self.linearize.into(),
         }
     }
 }
@@ -190,6 +196,33 @@ pub struct IntegratorArgs {
     pub no_knot_split: bool,
 }
 
+impl IntegratorArgs {
+    /// The flags as the frame library's options; `tf_text` is the `--tf`
+    /// file's content, read by the caller.
+    pub fn choice(&self, tf_text: Option<String>) -> tetray_frame::IntegratorChoice {
+        let tf = match (&self.tf, tf_text) {
+            (Some(path), Some(text)) => tetray_frame::TfSource::ParaView {
+                text,
+                name: self.tf_name.clone(),
+                rescale: !self.no_rescale,
+                label: format!("--tf {}", path.display()),
+            },
+            _ => tetray_frame::TfSource::Default,
+        };
+        tetray_frame::IntegratorChoice {
+            scalar: self.scalar.clone(),
+            method: self.integrator,
+            tf,
+            unit_distance: self.unit_distance,
+            opacity_mode: self.opacity_mode.into(),
+            psi_size: self.psi_size,
+            riemann_step: self.riemann_step,
+            preintegration_size: self.preintegration_size,
+            knot_split: !self.no_knot_split,
+        }
+    }
+}
+
 /// Which renderer draws the image.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum RendererArg {
@@ -243,6 +276,29 @@ pub struct WalkArgs {
     pub no_adaptive_tf: bool,
 }
 
+impl From<RendererArg> for tetray_frame::RendererChoice {
+    fn from(arg: RendererArg) -> Self {
+        match arg {
+            RendererArg::Auto => tetray_frame::RendererChoice::Auto,
+            RendererArg::Cpu => tetray_frame::RendererChoice::Cpu,
+            RendererArg::Gpu => tetray_frame::RendererChoice::Gpu,
+            RendererArg::Project => tetray_frame::RendererChoice::Project,
+            RendererArg::ShearWarp => tetray_frame::RendererChoice::ShearWarp,
+        }
+    }
+}
+
+impl From<&WalkArgs> for tetray_frame::WalkOptions {
+    fn from(walk: &WalkArgs) -> Self {
+        tetray_frame::WalkOptions {
+            early_termination: walk.early_termination,
+            max_steps: walk.max_steps,
+            sort: walk.sort,
+            adaptive_tf: !walk.no_adaptive_tf,
+        }
+    }
+}
+
 /// Image size, file and background.
 #[derive(Debug, Clone, Args)]
 pub struct OutputArgs {
@@ -250,7 +306,8 @@ pub struct OutputArgs {
     #[arg(long, value_name = "WxH", value_parser = parse_size, default_value = "512x512")]
     pub size: (u32, u32),
     /// Output image: .png (composited over --background, 8-bit, no sRGB
-    /// transform) or .exr (linear float RGBA, premultiplied).
+    /// transform), .exr (linear float RGBA, premultiplied) or .npy (the
+    /// same floats as a NumPy (height, width, 4) float32 array).
     #[arg(short, long, value_name = "FILE", default_value = "tetray.png")]
     pub output: PathBuf,
     /// Background colour r,g,b (or one grey value) for PNG output.
@@ -300,16 +357,6 @@ pub fn parse_method(text: &str) -> Result<Method, String> {
 pub fn parse_sort(text: &str) -> Result<SortKind, String> {
     text.parse()
         .map_err(|e: tetray_project::sort::UnknownSort| e.to_string())
-}
-
-/// The BVH preset for a mesh with `faces` boundary faces: the one given, or
-/// the default described at [`WalkArgs::bvh_preset`].
-pub fn bvh_preset_for(given: Option<BuildPreset>, faces: usize) -> BuildPreset {
-    given.unwrap_or(if faces <= 100_000 {
-        BuildPreset::VerySlow
-    } else {
-        BuildPreset::Fast
-    })
 }
 
 pub fn parse_bvh_preset(text: &str) -> Result<BuildPreset, String> {

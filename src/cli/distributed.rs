@@ -184,13 +184,22 @@ fn prepare<C: Communicator>(comm: &C, input: &FrameInput<'_>, quiet: bool) -> an
              in front of its fragments): leave --early-termination at 1"
         );
     }
-    let args = input.integrator;
-    let tf_text = match &args.tf {
+    let tf_text = match &input.integrator.tf {
         Some(path) => Some(
             std::fs::read_to_string(path)
                 .with_context(|| format!("--tf {}: cannot read", path.display()))?,
         ),
         None => None,
+    };
+    let args = &input.integrator.choice(tf_text);
+    let warn = |line: String| {
+        if rank0 {
+            scene::warn(line);
+        }
+    };
+    let flog = tetray_frame::Log {
+        info: &log,
+        warn: &warn,
     };
     let start = Instant::now();
     let (name, loaded, cells, origin) = load_part(comm, input.mesh)?;
@@ -214,7 +223,7 @@ fn prepare<C: Communicator>(comm: &C, input: &FrameInput<'_>, quiet: bool) -> an
         if rank0 {
             eprintln!("warning: {name} has no point scalar field: rendering a uniform volume");
         }
-        scene::SOLID.to_string()
+        tetray_frame::SOLID.to_string()
     });
     let scene = match loaded {
         Some(mut l) => {
@@ -222,7 +231,7 @@ fn prepare<C: Communicator>(comm: &C, input: &FrameInput<'_>, quiet: bool) -> an
                 add_zero_field(&mut l.mesh, &field);
             }
             let faces = l.topology.boundary_faces.len();
-            let preset = super::args::bvh_preset_for(input.walk.bvh_preset, faces);
+            let preset = tetray_frame::bvh_preset_for(input.walk.bvh_preset, faces);
             Some(
                 Scene::new(l.mesh, l.topology, &field, preset)
                     .with_context(|| format!("{name}: preparing this rank's part"))?,
@@ -231,30 +240,23 @@ fn prepare<C: Communicator>(comm: &C, input: &FrameInput<'_>, quiet: bool) -> an
         None => None,
     };
     let bounds = summary.bounds;
-    let camera = scene::build_camera(input.camera, bounds, input.size, origin)?;
-    if rank0 {
-        scene::warn_if_inside(&camera, bounds);
-    }
+    let camera = tetray_frame::build_camera(&input.camera.options(), bounds, input.size, origin)?;
+    tetray_frame::setup::warn_if_inside(&camera, bounds, flog);
     let unit_distance = args
         .unit_distance
         .unwrap_or_else(|| summary.paraview_unit_distance());
     let range = agreed.range;
-    let tf = scene::transfer_function(
-        args,
-        tf_text.as_deref(),
-        &field,
-        range,
-        bounds,
-        unit_distance,
-    )?;
-    let options = scene::integrator_options(args, unit_distance, summary.mean_chord(), range);
-    let (integrator, _) = scene::integrator(args, &tf, &options, &field, &log)?;
+    let tf =
+        tetray_frame::setup::transfer_function(args, &field, range, bounds, unit_distance, flog)?;
+    let options =
+        tetray_frame::setup::integrator_options(args, unit_distance, summary.mean_chord(), range);
+    let (integrator, _) = tetray_frame::setup::integrator(args, &tf, &options, &field, flog)?;
     Ok(Part {
         name,
         scene,
         camera,
         integrator,
-        method: args.integrator,
+        method: args.method,
         field,
         tets_total: summary.tets,
         load_time,

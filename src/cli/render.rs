@@ -20,6 +20,8 @@ const PROGRESS_AFTER: Duration = Duration::from_millis(500);
 pub(super) enum ImageFormat {
     Png,
     Exr,
+    /// NumPy's `.npy`: the EXR's float RGBA as a (height, width, 4) array.
+    Npy,
 }
 
 pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
@@ -136,7 +138,11 @@ pub(super) fn image_format(path: &Path) -> anyhow::Result<ImageFormat> {
     let format = match ext.as_deref() {
         Some("png") => ImageFormat::Png,
         Some("exr") => ImageFormat::Exr,
-        _ => bail!("-o {}: the output must end in .png or .exr", path.display()),
+        Some("npy") => ImageFormat::Npy,
+        _ => bail!(
+            "-o {}: the output must end in .png, .exr or .npy",
+            path.display()
+        ),
     };
     let parent = path.parent().filter(|p| !p.as_os_str().is_empty());
     if let Some(dir) = parent.filter(|dir| !dir.is_dir()) {
@@ -157,6 +163,7 @@ pub(super) fn write_image(
 ) -> anyhow::Result<()> {
     match format {
         ImageFormat::Exr => image.write_exr(path)?,
+        ImageFormat::Npy => image.write_npy(path)?,
         ImageFormat::Png => image.write_png(path, background)?,
     }
     Ok(())

@@ -26,7 +26,9 @@ pub mod vtk;
 
 pub use error::IoError;
 pub use exodus::{read_exodus_bytes, read_exodus_file, ExodusError, ExodusOptions, ExodusRead};
-pub use load::{load, load_piece_subset, load_plot3d_bytes, plot3d_q_sibling, LoadOptions};
+pub use load::{
+    load, load_grid, load_piece_subset, load_plot3d_bytes, plot3d_q_sibling, LoadOptions,
+};
 pub use plot3d::{read_plot3d_bytes, read_plot3d_files, Plot3dRead};
 pub use tetray_mesh::{ElementBlock, LoadReport, LoadedMesh};
 pub use vtk::{read_image_grid, ImageGrid, VtkError};

@@ -6,7 +6,7 @@
 use std::path::{Path, PathBuf};
 
 use glam::DVec3;
-use tetray_mesh::cells::CellCounts;
+use tetray_mesh::cells::{CellCounts, CellGrid};
 use tetray_mesh::{finish, LoadedMesh, MeshRead};
 
 use crate::exodus::{read_exodus_file, ExodusOptions, ExodusRead};
@@ -187,6 +187,28 @@ pub fn load_piece_subset(
 /// [`tetray_mesh::MeshError::InFile`].
 pub fn load_plot3d_bytes(xyz: &[u8], q: Option<&[u8]>, name: &str) -> Result<LoadedMesh, IoError> {
     Ok(finish(from_plot3d(read_plot3d_bytes(xyz, q, name)?)).map_err(|e| e.in_file(name))?)
+}
+
+/// Loads a raw grid built in memory (by a caller that holds the arrays of
+/// a dataset, such as the Python bindings) exactly as [`load`] loads the
+/// same dataset from a serial VTK XML file: ghost and global-id arrays
+/// handled, a structured grid without volume cells refused, cells split,
+/// then [`tetray_mesh::finish`]. `name` is used in messages and `format`
+/// in the report.
+///
+/// # Errors
+/// As [`load`] for a `.vtu` (bad indices, NaN points, unsupported cells...).
+pub fn load_grid(
+    grid: CellGrid,
+    name: &str,
+    format: &'static str,
+    opts: &LoadOptions,
+) -> Result<LoadedMesh, IoError> {
+    let vtk_opts = vtk::ReadOptions {
+        linearize: opts.linearize,
+    };
+    let read = vtk::assemble_grid(grid, name, &vtk_opts)?;
+    Ok(finish(from_vtk(read, format)).map_err(|e| e.in_file(name))?)
 }
 
 fn from_vtk(read: vtk::VtkRead, format: &'static str) -> MeshRead {

@@ -23,6 +23,12 @@ pub enum ImageError {
     },
     #[error("image size {width}x{height} is too large")]
     TooLarge { width: u32, height: u32 },
+    #[error("cannot write image {path}: {source}")]
+    WriteFile {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
 }
 
 /// A rendered image: `rgba[y * width + x]`, row 0 at the top.
@@ -114,6 +120,40 @@ impl Image {
         })
     }
 
+    /// The image as a NumPy `.npy` file (format version 1.0): a
+    /// `(height, width, 4)` array of little-endian f32, C order, row 0 at
+    /// the top, premultiplied like the EXR. NumPy reads it with
+    /// `numpy.load`, exactly (no conversion on either side).
+    pub fn npy_bytes(&self) -> Vec<u8> {
+        let header = format!(
+            "{{'descr': '<f4', 'fortran_order': False, 'shape': ({}, {}, 4), }}",
+            self.height, self.width
+        );
+        // Magic (6) + version (2) + header length (2) + header + '\n',
+        // padded with spaces to a multiple of 64 bytes (the format's rule).
+        let unpadded = 10 + header.len() + 1;
+        let padding = unpadded.next_multiple_of(64) - unpadded;
+        let header_len = header.len() + padding + 1;
+        let mut bytes = Vec::with_capacity(10 + header_len + self.rgba.len() * 16);
+        bytes.extend_from_slice(b"\x93NUMPY\x01\x00");
+        bytes.extend_from_slice(&(header_len as u16).to_le_bytes());
+        bytes.extend_from_slice(header.as_bytes());
+        bytes.extend(std::iter::repeat_n(b' ', padding));
+        bytes.push(b'\n');
+        for value in self.rgba.iter().flatten() {
+            bytes.extend_from_slice(&value.to_le_bytes());
+        }
+        bytes
+    }
+
+    /// [`Image::npy_bytes`] written to `path`.
+    pub fn write_npy(&self, path: &Path) -> Result<(), ImageError> {
+        std::fs::write(path, self.npy_bytes()).map_err(|source| ImageError::WriteFile {
+            path: path.to_path_buf(),
+            source,
+        })
+    }
+
     /// [`Image::to_rgb8`] written as a PNG.
     pub fn write_png(&self, path: &Path, background: Vec3) -> Result<(), ImageError> {
         self.to_rgb8(background)?
@@ -145,4 +185,35 @@ fn pixel_count(width: u32, height: u32) -> Result<usize, ImageError> {
         .checked_mul(height as usize)
         .filter(|&n| n <= usize::MAX / 16)
         .ok_or(ImageError::TooLarge { width, height })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The layout NumPy's format document fixes: magic, version 1.0, a
+    /// header padded so the data starts at a multiple of 64, then the
+    /// values in order, little-endian.
+    #[test]
+    fn npy_layout() {
+        let image = Image {
+            width: 3,
+            height: 2,
+            rgba: (0..6).map(|i| [i as f32, 0.5, -1.0, 0.25]).collect(),
+        };
+        let bytes = image.npy_bytes();
+        assert_eq!(&bytes[..8], b"\x93NUMPY\x01\x00");
+        let header_len = u16::from_le_bytes([bytes[8], bytes[9]]) as usize;
+        let data = 10 + header_len;
+        assert_eq!(data % 64, 0);
+        let header = std::str::from_utf8(&bytes[10..data]).unwrap();
+        assert!(header.contains("'shape': (2, 3, 4)"), "{header}");
+        assert!(header.ends_with('\n'));
+        assert_eq!(bytes.len(), data + 6 * 16);
+        let value = |k: usize| {
+            f32::from_le_bytes(bytes[data + 4 * k..data + 4 * k + 4].try_into().unwrap())
+        };
+        assert_eq!(value(4), 1.0);
+        assert_eq!(value(6), -1.0);
+    }
 }

@@ -110,6 +110,16 @@ pub fn read_vtu_bytes_with(
     xml::read::read_with(bytes, name, opts)
 }
 
+/// Assembles a raw grid held in memory as [`read_vtu_bytes_with`] does the
+/// grid it parses (the one path from raw arrays to tetrahedra).
+pub fn assemble_grid(
+    grid: tetray_mesh::cells::CellGrid,
+    name: &str,
+    opts: &ReadOptions,
+) -> Result<VtkRead, VtkError> {
+    xml::read::assemble(grid, name, opts)
+}
+
 /// Reads a parallel XML file (`.pvtu`, `.pvts`, `.pvtr`, `.pvti`): every
 /// piece it names, relative to its folder, read in parallel, ghost cells
 /// dropped, shared points welded into one mesh.

@@ -13,7 +13,16 @@ use tetray_mesh::cells::{finish_grid, merge_arrays as merge};
 
 /// Parses a serial VTK XML file held in memory; `name` is used in messages.
 pub(crate) fn read_with(bytes: &[u8], name: &str, opts: &ReadOptions) -> Result<VtkRead, VtkError> {
-    let grid = finish_grid(read_raw(bytes, name)?, name)?;
+    assemble(read_raw(bytes, name)?, name, opts)
+}
+
+/// The raw grid of a serial file (or one built in memory) to tetrahedra.
+pub(crate) fn assemble(
+    grid: CellGrid,
+    name: &str,
+    opts: &ReadOptions,
+) -> Result<VtkRead, VtkError> {
+    let grid = finish_grid(grid, name)?;
     if grid.dataset != "UnstructuredGrid" {
         crate::vtk::collection::require_volume(&grid, name, "")?;
     }

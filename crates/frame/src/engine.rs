@@ -1,0 +1,302 @@
+//! The renderer of a [`Setup`]: the CPU reference ray caster, the GPU one,
+//! the cell projection or shear-warp ([`RendererChoice`]).
+
+use std::time::Duration;
+
+use tetray_gpu::{GpuContext, GpuIntegrator, GpuRaycaster, GpuRenderOptions, GpuScene};
+use tetray_project::{ProjectOptions, ProjectStats, Projection};
+use tetray_raycast::{render_scalar_with_progress, Camera, Image, RenderOptions};
+
+use crate::error::{bail, Context, FrameError};
+use crate::options::{RendererChoice, WalkOptions};
+use crate::setup::Setup;
+
+/// A ready renderer.
+pub enum Engine {
+    Cpu,
+    Gpu(Box<GpuEngine>),
+    Project(Box<ProjectEngine>),
+    ShearWarp(Box<tetray_shearwarp::ShearWarp>),
+}
+
+/// The cell projection with the mesh and integrator uploaded.
+pub struct ProjectEngine {
+    ctx: GpuContext,
+    integrator: GpuIntegrator,
+    projection: Projection,
+}
+
+/// The GPU ray caster with the mesh and integrator uploaded.
+pub struct GpuEngine {
+    ctx: GpuContext,
+    raycaster: GpuRaycaster,
+    scene: GpuScene,
+    integrator: GpuIntegrator,
+}
+
+/// What either renderer reports of a frame.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct FrameStats {
+    pub rays: u64,
+    pub rays_hit: u64,
+    pub segments: u64,
+    pub steps: u64,
+    pub entries: u64,
+    pub steps_bound_hits: u64,
+    pub walk_failures: u64,
+    /// Render time: the GPU pass by timestamp queries where the adapter has
+    /// them, else the wall time of the frame; for the projection, its sort
+    /// and draw list (CPU) plus its render pass.
+    pub elapsed: Duration,
+    /// The projection's own counters and stage times.
+    pub project: Option<ProjectStats>,
+}
+
+pub struct Frame {
+    pub image: Image,
+    pub stats: FrameStats,
+}
+
+impl Engine {
+    /// The renderer chosen (`--renderer`). `auto` takes the GPU ray caster
+    /// on a hardware adapter and the CPU one otherwise (no adapter, or a
+    /// CPU implementation such as lavapipe, which the CPU ray caster
+    /// outruns), saying so.
+    pub fn new(
+        choice: impl Into<RendererChoice>,
+        setup: &Setup,
+        log: &dyn Fn(String),
+    ) -> Result<Engine, FrameError> {
+        let choice = choice.into();
+        let gpu_method = tetray_gpu::layout::method_code(setup.method).is_some();
+        // The adapter for a renderer asked for by name, which must be able
+        // to run the method.
+        let gpu_context = |flag: &str| -> Result<GpuContext, FrameError> {
+            if !gpu_method {
+                bail!(
+                    "--integrator {}: the f64 reference has no GPU kernel; use --renderer cpu",
+                    setup.method
+                );
+            }
+            GpuContext::new().with_context(|| format!("--renderer {flag}"))
+        };
+        match choice {
+            RendererChoice::Cpu => Ok(Engine::Cpu),
+            RendererChoice::Gpu => Engine::gpu(gpu_context("gpu")?, setup, log),
+            RendererChoice::Project => Engine::project(gpu_context("project")?, setup, log),
+            RendererChoice::ShearWarp => Ok(Engine::ShearWarp(Box::new(
+                crate::shear_warp::engine(setup, log)?,
+            ))),
+            RendererChoice::Auto => {
+                if !gpu_method {
+                    log(format!(
+                        "renderer: cpu (the {} integrator is CPU only)",
+                        setup.method
+                    ));
+                    return Ok(Engine::Cpu);
+                }
+                match GpuContext::new() {
+                    Ok(ctx) if !ctx.is_cpu() => Engine::gpu(ctx, setup, log),
+                    Ok(ctx) => {
+                        log(format!(
+                            "renderer: cpu (the adapter {} is a CPU implementation; \
+                             --renderer gpu uses it anyway)",
+                            ctx.adapter_name()
+                        ));
+                        Ok(Engine::Cpu)
+                    }
+                    Err(e) => {
+                        log(format!("renderer: cpu ({})", chain(&e)));
+                        Ok(Engine::Cpu)
+                    }
+                }
+            }
+        }
+    }
+
+    fn gpu(ctx: GpuContext, setup: &Setup, log: &dyn Fn(String)) -> Result<Engine, FrameError> {
+        log(format!("renderer: gpu on {}", ctx.adapter_name()));
+        let raycaster = GpuRaycaster::new(&ctx).context("compiling the GPU kernel")?;
+        let scene = GpuScene::new(&ctx, setup.scene()?).context("uploading the mesh to the GPU")?;
+        let integrator = GpuIntegrator::new(&ctx, &setup.integrator)
+            .context("uploading the transfer function to the GPU")?;
+        log(format!(
+            "uploaded {} tetrahedra ({:.1} MB, {:.1} bytes per tetrahedron)",
+            scene.tet_count(),
+            scene.bytes() as f64 / 1e6,
+            scene.bytes() as f64 / scene.tet_count().max(1) as f64
+        ));
+        Ok(Engine::Gpu(Box::new(GpuEngine {
+            ctx,
+            raycaster,
+            scene,
+            integrator,
+        })))
+    }
+
+    fn project(ctx: GpuContext, setup: &Setup, log: &dyn Fn(String)) -> Result<Engine, FrameError> {
+        let integrator = GpuIntegrator::new(&ctx, &setup.integrator)
+            .context("uploading the transfer function to the GPU")?;
+        let projection = Projection::new(&ctx, setup.scene()?, &integrator)
+            .context("preparing the mesh for projection")?;
+        log(format!(
+            "renderer: project on {} into {:?} ({} tetrahedra, {:.1} MB; adaptive sampling \
+             would draw {} pieces)",
+            ctx.adapter_name(),
+            projection.projector().format(),
+            projection.scene.tet_count(),
+            projection.gpu_bytes() as f64 / 1e6,
+            projection.intervals.pieces
+        ));
+        Ok(Engine::Project(Box::new(ProjectEngine {
+            ctx,
+            integrator,
+            projection,
+        })))
+    }
+
+    /// "cpu", "gpu" or "project".
+    pub fn name(&self) -> &'static str {
+        match self {
+            Engine::Cpu => "cpu",
+            Engine::Gpu(_) => "gpu",
+            Engine::Project(_) => "project",
+            Engine::ShearWarp(_) => "shear-warp",
+        }
+    }
+
+    /// The device the frames run on.
+    pub fn adapter(&self) -> String {
+        match self {
+            Engine::Cpu | Engine::ShearWarp(_) => {
+                format!("cpu (rayon), {} threads", rayon::current_num_threads())
+            }
+            Engine::Gpu(gpu) => gpu.ctx.adapter_name(),
+            Engine::Project(p) => p.ctx.adapter_name(),
+        }
+    }
+
+    /// Whether frame times come from GPU timestamp queries.
+    pub fn gpu_timestamps(&self) -> bool {
+        match self {
+            Engine::Cpu | Engine::ShearWarp(_) => false,
+            Engine::Gpu(gpu) => gpu.ctx.timestamps,
+            Engine::Project(p) => p.ctx.timestamps,
+        }
+    }
+
+    /// One frame of `setup` from `camera`.
+    pub fn render(
+        &self,
+        setup: &Setup,
+        camera: &Camera,
+        walk: impl Into<WalkOptions>,
+        (width, height): (u32, u32),
+        progress: Option<&(dyn Fn(usize, usize) + Sync)>,
+    ) -> Result<Frame, FrameError> {
+        let walk: WalkOptions = walk.into();
+        match self {
+            Engine::ShearWarp(sw) => {
+                crate::shear_warp::render(sw, camera, walk.early_termination, (width, height))
+            }
+            Engine::Cpu => {
+                let options = RenderOptions {
+                    width,
+                    height,
+                    early_termination: walk.early_termination,
+                    max_steps_per_ray: walk.max_steps,
+                    // The global pool, sized once by --threads.
+                    threads: None,
+                };
+                let out = render_scalar_with_progress(
+                    setup.scene()?,
+                    camera,
+                    &setup.integrator,
+                    &options,
+                    progress,
+                )
+                .context("rendering")?;
+                let s = out.stats;
+                Ok(Frame {
+                    image: out.image,
+                    stats: FrameStats {
+                        rays: s.rays,
+                        rays_hit: s.rays_hit,
+                        segments: s.segments,
+                        steps: s.steps,
+                        entries: s.entries,
+                        steps_bound_hits: s.steps_bound_hits,
+                        walk_failures: s.walk_failures,
+                        elapsed: s.elapsed,
+                        project: None,
+                    },
+                })
+            }
+            Engine::Gpu(gpu) => {
+                let options = GpuRenderOptions {
+                    width,
+                    height,
+                    early_termination: walk.early_termination,
+                    max_steps_per_ray: walk.max_steps,
+                };
+                let out = gpu
+                    .raycaster
+                    .render(&gpu.ctx, &gpu.scene, &gpu.integrator, camera, &options)
+                    .context("rendering on the GPU")?;
+                let s = out.stats;
+                Ok(Frame {
+                    image: out.image,
+                    stats: FrameStats {
+                        rays: s.rays,
+                        rays_hit: s.rays_hit,
+                        segments: s.segments,
+                        steps: s.steps,
+                        entries: s.entries,
+                        steps_bound_hits: s.steps_bound_hits,
+                        walk_failures: s.walk_failures,
+                        elapsed: s.frame_time(),
+                        project: None,
+                    },
+                })
+            }
+            Engine::Project(p) => {
+                let options = ProjectOptions {
+                    width,
+                    height,
+                    sort: walk.sort,
+                    adaptive_tf: walk.adaptive_tf && setup.integrator.splits_at_knots(),
+                };
+                let out = p
+                    .projection
+                    .render(&p.ctx, &p.integrator, camera, &options)
+                    .context("projecting")?;
+                let s = out.stats;
+                let rays_hit = out.image.rgba.iter().filter(|p| p[3] > 0.0).count() as u64;
+                Ok(Frame {
+                    image: out.image,
+                    stats: FrameStats {
+                        rays: u64::from(width) * u64::from(height),
+                        rays_hit,
+                        segments: s.segments,
+                        steps: s.draws as u64,
+                        elapsed: s.sort_time + s.expand_time + s.draw_time,
+                        project: Some(s),
+                        ..FrameStats::default()
+                    },
+                })
+            }
+        }
+    }
+}
+
+/// An error and its sources on one line.
+fn chain(e: &dyn std::error::Error) -> String {
+    let mut text = e.to_string();
+    let mut source = e.source();
+    while let Some(s) = source {
+        text.push_str(": ");
+        text.push_str(&s.to_string());
+        source = s.source();
+    }
+    text
+}

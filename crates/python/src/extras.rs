@@ -1,0 +1,273 @@
+//! `segment`, `psi` and `compare`: the CLI's commands of the same names,
+//! returning Python values instead of printing JSON.
+
+use std::time::Duration;
+
+use glam::Vec3;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use tetray_frame::{Engine, RendererChoice, Setup, WalkOptions};
+use tetray_integrate::{psi as psi_f64, IntegratorOptions, Method, Model, PsiTable};
+use tetray_integrate::{ScalarIntegrator, SegmentParams};
+use tetray_project::SortKind;
+
+use crate::{guard, to_py, value_error};
+
+/// The integration methods by name, in the CLI's order.
+#[pyfunction]
+pub fn methods() -> Vec<&'static str> {
+    Method::ALL.iter().map(|m| m.name()).collect()
+}
+
+fn method(name: &str) -> PyResult<Method> {
+    name.parse()
+        .map_err(|e: tetray_integrate::UnknownMethod| value_error(e.to_string()))
+}
+
+fn rgb(key: &str, v: (f32, f32, f32), non_negative: bool) -> PyResult<Vec3> {
+    let v = Vec3::new(v.0, v.1, v.2);
+    if !v.is_finite() || (non_negative && v.min_element() < 0.0) {
+        return Err(value_error(format!(
+            "{key}: {v} must be finite{}",
+            if non_negative { " and >= 0" } else { "" }
+        )));
+    }
+    Ok(v)
+}
+
+/// One ray segment integrated by `integrator` (`tetray segment`): a dict
+/// with colour, alpha, emitted, transmittance, method and model.
+#[pyfunction]
+#[pyo3(signature = (integrator, lb, lf, tau_b, tau_f, length, incoming=(0.0, 0.0, 0.0),
+    unit_distance=1.0, psi_size=1024, riemann_step=None, preintegration_size=256))]
+#[allow(clippy::too_many_arguments)]
+pub fn segment<'py>(
+    py: Python<'py>,
+    integrator: &str,
+    lb: (f32, f32, f32),
+    lf: (f32, f32, f32),
+    tau_b: (f32, f32, f32),
+    tau_f: (f32, f32, f32),
+    length: f32,
+    incoming: (f32, f32, f32),
+    unit_distance: f32,
+    psi_size: usize,
+    riemann_step: Option<f32>,
+    preintegration_size: usize,
+) -> PyResult<Bound<'py, PyDict>> {
+    let method = method(integrator)?;
+    let params = SegmentParams {
+        lum_back: rgb("lb", lb, true)?,
+        lum_front: rgb("lf", lf, true)?,
+        tau_back: rgb("tau_b", tau_b, true)?,
+        tau_front: rgb("tau_f", tau_f, true)?,
+        length,
+    };
+    let incoming = rgb("incoming", incoming, true)?;
+    if !(length.is_finite() && length >= 0.0) {
+        return Err(value_error(format!(
+            "length {length} must be finite and >= 0"
+        )));
+    }
+    if !(unit_distance.is_finite() && unit_distance > 0.0) {
+        return Err(value_error(format!(
+            "unit_distance {unit_distance} must be finite and > 0"
+        )));
+    }
+    if let Some(step) = riemann_step.filter(|s| !(s.is_finite() && *s > 0.0)) {
+        return Err(value_error(format!(
+            "riemann_step {step} must be finite and > 0"
+        )));
+    }
+    // Tables and steps sized for this one segment, as the CLI sizes them.
+    let length_or_one = if length > 0.0 { length } else { 1.0 };
+    let options = IntegratorOptions {
+        unit_distance,
+        psi_table_size: psi_size,
+        riemann_step: riemann_step.unwrap_or(length_or_one / 256.0),
+        preintegration_table_size: preintegration_size,
+        preintegration_length: length_or_one,
+        ..IntegratorOptions::default()
+    };
+    let light = guard(|| {
+        let integrator = ScalarIntegrator::for_segment(method, &params, &options)
+            .map_err(|e| value_error(format!("setting up the {method} integrator: {e}")))?;
+        // The knots put the back at scalar 0 and the front at scalar 1.
+        Ok(integrator.integrate(1.0, 0.0, length))
+    })?;
+    let d = PyDict::new(py);
+    d.set_item("method", method.name())?;
+    d.set_item(
+        "model",
+        match method.model() {
+            Model::LinearAttenuation => "linear attenuation",
+            Model::LinearOpacity => "linear opacity",
+        },
+    )?;
+    d.set_item("colour", light.over(incoming).to_array())?;
+    d.set_item("alpha", light.alpha())?;
+    d.set_item("emitted", light.emitted.to_array())?;
+    d.set_item("transmittance", light.transmittance.to_array())?;
+    Ok(d)
+}
+
+/// The Psi table at (gamma_b, gamma_f) against Psi in f64 (`tetray psi`).
+#[pyfunction]
+#[pyo3(signature = (gamma_b, gamma_f, size=1024))]
+pub fn psi<'py>(
+    py: Python<'py>,
+    gamma_b: f32,
+    gamma_f: f32,
+    size: usize,
+) -> PyResult<Bound<'py, PyDict>> {
+    for (key, g) in [("gamma_b", gamma_b), ("gamma_f", gamma_f)] {
+        if !(0.0..=1.0).contains(&g) {
+            return Err(value_error(format!("{key} {g} is outside [0, 1]")));
+        }
+    }
+    let table = guard(|| PsiTable::shared(size).map_err(|e| value_error(e.to_string())))?;
+    let tau_d = |gamma: f32| {
+        let g = f64::from(gamma);
+        if g >= 1.0 {
+            f64::INFINITY
+        } else {
+            g / (1.0 - g)
+        }
+    };
+    let (a, b) = (tau_d(gamma_b), tau_d(gamma_f));
+    let exact = psi_f64::psi(a, b);
+    let bilinear = table.lookup_gamma(gamma_b, gamma_f);
+    let nearest = table.lookup_gamma_nearest(gamma_b, gamma_f);
+    let d = PyDict::new(py);
+    d.set_item("gamma_b", gamma_b)?;
+    d.set_item("gamma_f", gamma_f)?;
+    d.set_item("tau_b_d", a)?;
+    d.set_item("tau_f_d", b)?;
+    d.set_item("size", table.size())?;
+    d.set_item("spacing", table.spacing().name())?;
+    d.set_item("table_bilinear", bilinear)?;
+    d.set_item("table_nearest", nearest)?;
+    d.set_item("f64", exact)?;
+    d.set_item("error_bilinear", (f64::from(bilinear) - exact).abs())?;
+    d.set_item("error_nearest", (f64::from(nearest) - exact).abs())?;
+    Ok(d)
+}
+
+/// One combination of `compare`: renderer, integrator (None: the scene's),
+/// sort (project only).
+pub type Spec = (String, Option<String>, Option<String>);
+
+/// Renders the CPU f64 reference and each spec from the setup's camera
+/// (median of `frames` timed frames, GPU renderers warmed up first), as
+/// `tetray compare` does, and compares them. The setup's integrator is
+/// left as it was.
+pub fn compare(
+    setup: &mut Setup,
+    specs: &[Spec],
+    frames: u32,
+    size: (u32, u32),
+    log: &dyn Fn(String),
+) -> PyResult<tetray_compare::Report> {
+    if frames == 0 {
+        return Err(value_error("frames must be at least 1"));
+    }
+    let original = setup.method;
+    let mut parsed = Vec::with_capacity(specs.len());
+    for (renderer, integrator, sort) in specs {
+        let renderer: RendererChoice = renderer.parse().map_err(value_error)?;
+        if matches!(renderer, RendererChoice::Auto | RendererChoice::ShearWarp) {
+            return Err(value_error(format!(
+                "compare: the renderer must be cpu, gpu or project, not {}",
+                renderer.name()
+            )));
+        }
+        let m = integrator.as_deref().map(method).transpose()?;
+        let sort = match sort.as_deref() {
+            None => None,
+            Some(_) if renderer != RendererChoice::Project => {
+                return Err(value_error(
+                    "compare: a sort is for the project renderer only",
+                ))
+            }
+            Some(s) => Some(
+                s.parse::<SortKind>()
+                    .map_err(|e| value_error(e.to_string()))?,
+            ),
+        };
+        parsed.push((renderer, m.unwrap_or(original), sort));
+    }
+    let result = (|| {
+        let reference = render_one(
+            setup,
+            (RendererChoice::Cpu, Method::Reference, None),
+            frames,
+            size,
+            log,
+        )?;
+        let methods = parsed
+            .iter()
+            .map(|&spec| render_one(setup, spec, frames, size, log))
+            .collect::<PyResult<Vec<_>>>()?;
+        let title = format!("{} ({} tetrahedra)", setup.mesh_name, setup.tet_count());
+        tetray_compare::compare(&title, reference, methods).map_err(|e| value_error(e.to_string()))
+    })();
+    setup.use_method(original).map_err(to_py)?;
+    result
+}
+
+fn render_one(
+    setup: &mut Setup,
+    (renderer, method, sort): (RendererChoice, Method, Option<SortKind>),
+    frames: u32,
+    size: (u32, u32),
+    log: &dyn Fn(String),
+) -> PyResult<tetray_compare::Method> {
+    setup.use_method(method).map_err(to_py)?;
+    let setup: &Setup = setup;
+    // No early termination: every method integrates every ray to its end,
+    // as the reference does.
+    let walk = WalkOptions {
+        sort: sort.unwrap_or(SortKind::Mpvonc),
+        ..WalkOptions::default()
+    };
+    let engine = Engine::new(renderer, setup, log).map_err(to_py)?;
+    let label = match renderer {
+        RendererChoice::Project => format!("project {method} {}", walk.sort),
+        _ => format!("{} {method}", engine.name()),
+    };
+    let render = || {
+        engine
+            .render(setup, &setup.camera, walk, size, None)
+            .map_err(to_py)
+    };
+    if !matches!(engine, Engine::Cpu) {
+        render()?;
+    }
+    let mut frames: Vec<tetray_frame::Frame> =
+        (0..frames).map(|_| render()).collect::<PyResult<_>>()?;
+    frames.sort_by_key(|f| f.stats.elapsed);
+    let frame = frames.swap_remove(frames.len() / 2);
+    let seconds = frame
+        .stats
+        .elapsed
+        .max(Duration::from_nanos(1))
+        .as_secs_f64();
+    log(format!(
+        "{label}: {:.1} ms on {}",
+        seconds * 1e3,
+        engine.adapter()
+    ));
+    Ok(tetray_compare::Method {
+        label,
+        renderer: engine.name().to_string(),
+        integrator: method.name().to_string(),
+        sort: (renderer == RendererChoice::Project).then(|| walk.sort.name().to_string()),
+        adaptive_tf: frame.stats.project.map(|p| p.adaptive_tf),
+        speed: tetray_compare::Speed {
+            ms_per_frame: seconds * 1e3,
+            tets_per_s: setup.tet_count() as f64 / seconds,
+            segments_per_s: frame.stats.segments as f64 / seconds,
+        },
+        image: frame.image,
+    })
+}

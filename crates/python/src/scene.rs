@@ -1,0 +1,523 @@
+//! `Scene`: a mesh loaded once (topology, BVH, integrator tables, GPU
+//! uploads) and rendered from many cameras.
+
+use std::sync::{Mutex, RwLock};
+
+use glam::{DVec3, Vec3};
+use numpy::{IntoPyArray, PyArray3, PyArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+use tetray_frame::{
+    CameraOptions, Engine, FrameOptions, IntegratorChoice, Log, MeshInput, MeshOptions,
+    RendererChoice, Setup, TfSource, WalkOptions,
+};
+use tetray_integrate::{ColorPoint, Method, OpacityMode, OpacityPoint};
+use tetray_mesh::MeshSummary;
+
+use crate::grid::Grid;
+use crate::{guard, to_py, value_error};
+
+/// A prepared mesh and renderer.
+#[pyclass(module = "tetray._native", frozen)]
+pub struct Scene {
+    /// Written only by `compare`, which switches integrators.
+    setup: RwLock<Setup>,
+    engine: Engine,
+    walk: WalkOptions,
+    size: (u32, u32),
+    camera: CameraOptions,
+    info: Info,
+    /// Progress lines and warnings since the last `take_log`.
+    log: Mutex<(Vec<String>, Vec<String>)>,
+}
+
+/// What `info` reports, kept from the load (the scene consumes the mesh).
+struct Info {
+    summary: MeshSummary,
+    name: String,
+    input_cells: usize,
+    paraview_unit_distance: f32,
+    load_seconds: f64,
+}
+
+#[pymethods]
+impl Scene {
+    #[new]
+    #[pyo3(signature = (mesh, *, scalars=None, size=(512, 512), integrator="ppi",
+        renderer="auto", camera=None, tf_json=None, tf_name=None, tf_rescale=true,
+        tf_points=None, clim=None, unit_distance=None, opacity_mode="exact",
+        early_termination=1.0, max_steps=None, linearize="subdivide", q=None,
+        time_step=None, time=None, block=None, psi_size=1024))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        py: Python<'_>,
+        mesh: &Bound<'_, PyAny>,
+        scalars: Option<String>,
+        size: (u32, u32),
+        integrator: &str,
+        renderer: &str,
+        camera: Option<&Bound<'_, PyDict>>,
+        tf_json: Option<String>,
+        tf_name: Option<String>,
+        tf_rescale: bool,
+        tf_points: Option<TfPoints>,
+        clim: Option<(f32, f32)>,
+        unit_distance: Option<f32>,
+        opacity_mode: &str,
+        early_termination: f32,
+        max_steps: Option<u32>,
+        linearize: &str,
+        q: Option<std::path::PathBuf>,
+        time_step: Option<usize>,
+        time: Option<f64>,
+        block: Option<String>,
+        psi_size: usize,
+    ) -> PyResult<Scene> {
+        check_size(size)?;
+        let method: Method = integrator
+            .parse()
+            .map_err(|e: tetray_integrate::UnknownMethod| value_error(e.to_string()))?;
+        let renderer: RendererChoice = renderer.parse().map_err(value_error)?;
+        if renderer == RendererChoice::ShearWarp {
+            return Err(value_error(
+                "renderer=\"shear-warp\" is the CLI's only (tetray render --renderer shear-warp)",
+            ));
+        }
+        let opacity_mode = match opacity_mode {
+            "exact" => OpacityMode::Exact,
+            "vtk" => OpacityMode::Vtk,
+            other => {
+                return Err(value_error(format!(
+                    "opacity_mode {other:?}: expected \"exact\" or \"vtk\""
+                )))
+            }
+        };
+        let linearize = match linearize {
+            "subdivide" => tetray_io::vtk::Linearize::Subdivide,
+            "corners" => tetray_io::vtk::Linearize::Corners,
+            other => {
+                return Err(value_error(format!(
+                    "linearize {other:?}: expected \"subdivide\" or \"corners\""
+                )))
+            }
+        };
+        if !(early_termination > 0.0 && early_termination <= 1.0) {
+            return Err(value_error(format!(
+                "early_termination {early_termination} is outside (0, 1] (1 disables early \
+                 termination)"
+            )));
+        }
+        if let Some(u) = unit_distance.filter(|u| !(u.is_finite() && *u > 0.0)) {
+            return Err(value_error(format!(
+                "unit_distance {u} must be a finite number greater than 0"
+            )));
+        }
+        if max_steps == Some(0) {
+            return Err(value_error("max_steps must be at least 1"));
+        }
+        let tf = match (tf_json, tf_points) {
+            (Some(_), Some(_)) => {
+                return Err(value_error("give tf or cmap/opacity, not both"));
+            }
+            (Some(text), None) => TfSource::ParaView {
+                text,
+                name: tf_name,
+                rescale: tf_rescale,
+                label: "tf".into(),
+            },
+            (None, Some((color, opacity))) => TfSource::Normalized {
+                color: color
+                    .into_iter()
+                    .map(|(s, r, g, b)| ColorPoint {
+                        scalar: s,
+                        rgb: Vec3::new(r, g, b),
+                    })
+                    .collect(),
+                opacity: opacity
+                    .into_iter()
+                    .map(|(s, a)| OpacityPoint {
+                        scalar: s,
+                        alpha: a,
+                    })
+                    .collect(),
+                range: clim,
+            },
+            (None, None) => {
+                if clim.is_some() {
+                    // The default ramp over the given range.
+                    TfSource::Normalized {
+                        color: Vec::new(),
+                        opacity: Vec::new(),
+                        range: clim,
+                    }
+                } else {
+                    TfSource::Default
+                }
+            }
+        };
+        let camera = camera_options(camera)?;
+        let options = FrameOptions {
+            integrator: IntegratorChoice {
+                scalar: scalars,
+                method,
+                tf,
+                unit_distance,
+                opacity_mode,
+                psi_size,
+                ..IntegratorChoice::default()
+            },
+            camera: camera.clone(),
+            bvh_preset: None,
+            size,
+        };
+        let walk = WalkOptions {
+            early_termination,
+            max_steps,
+            ..WalkOptions::default()
+        };
+        let source = if let Ok(grid) = mesh.cast::<Grid>() {
+            let grid = grid.get();
+            Source::Grid(Box::new(grid.grid.clone()), grid.name.clone())
+        } else if let Ok(path) = mesh.extract::<std::path::PathBuf>() {
+            Source::File(MeshOptions {
+                mesh: Some(path),
+                q,
+                time_step,
+                time,
+                block,
+                linearize,
+            })
+        } else {
+            return Err(value_error("mesh must be a path or a tetray._native.Grid"));
+        };
+        let lines = Mutex::new((Vec::new(), Vec::new()));
+        let built = py.detach(|| {
+            guard(|| {
+                let info = |line: String| lines.lock().expect("log lock").0.push(line);
+                let warn = |line: String| lines.lock().expect("log lock").1.push(line);
+                let log = Log {
+                    info: &info,
+                    warn: &warn,
+                };
+                let input = match source {
+                    Source::Grid(grid, name) => {
+                        tetray_frame::load_grid(*grid, &name, "Python arrays", linearize)
+                    }
+                    Source::File(options) => tetray_frame::load_mesh(&options),
+                }
+                .map_err(to_py)?;
+                let info_of = info_of(&input);
+                let setup = tetray_frame::prepare(input, &options, log).map_err(to_py)?;
+                let engine = Engine::new(renderer, &setup, &info).map_err(to_py)?;
+                Ok((setup, engine, info_of))
+            })
+        });
+        let (setup, engine, info) = built?;
+        Ok(Scene {
+            setup: RwLock::new(setup),
+            engine,
+            walk,
+            size,
+            camera,
+            info,
+            log: lines,
+        })
+    }
+
+    /// Renders one frame: `camera` (a dict of CameraOptions' fields, see
+    /// `tetray.render`) or the scene's; `size` (width, height) or the
+    /// scene's. Returns (height, width, 4) float32, premultiplied.
+    #[pyo3(signature = (camera=None, size=None))]
+    fn render<'py>(
+        &self,
+        py: Python<'py>,
+        camera: Option<&Bound<'py, PyDict>>,
+        size: Option<(u32, u32)>,
+    ) -> PyResult<Bound<'py, PyArray3<f32>>> {
+        let size = size.unwrap_or(self.size);
+        check_size(size)?;
+        let camera = match camera {
+            Some(dict) => Some(camera_options(Some(dict))?),
+            None if size != self.size => Some(self.camera.clone()),
+            None => None,
+        };
+        let image = py.detach(|| {
+            guard(|| {
+                let setup = self.setup.read().expect("setup lock");
+                let camera = match &camera {
+                    Some(options) => setup.camera_for(options, size).map_err(to_py)?,
+                    None => setup.camera,
+                };
+                let frame = self
+                    .engine
+                    .render(&setup, &camera, self.walk, size, None)
+                    .map_err(to_py)?;
+                Ok(frame.image)
+            })
+        })?;
+        image_array(py, &image)
+    }
+
+    /// `frames` images orbiting the camera as `tetray bench` does: from the
+    /// scene's camera, turned `step` degrees (default 360 / frames) about
+    /// the view-up after each frame.
+    #[pyo3(signature = (frames, step=None))]
+    fn orbit<'py>(
+        &self,
+        py: Python<'py>,
+        frames: u32,
+        step: Option<f32>,
+    ) -> PyResult<Vec<Bound<'py, PyArray3<f32>>>> {
+        let step = step.unwrap_or(360.0 / frames.max(1) as f32);
+        if !step.is_finite() {
+            return Err(value_error(format!("step {step} is not finite")));
+        }
+        let images = py.detach(|| {
+            guard(|| {
+                let setup = self.setup.read().expect("setup lock");
+                let mut camera = setup.camera;
+                let mut images = Vec::with_capacity(frames as usize);
+                for _ in 0..frames {
+                    let frame = self
+                        .engine
+                        .render(&setup, &camera, self.walk, self.size, None)
+                        .map_err(to_py)?;
+                    images.push(frame.image);
+                    camera
+                        .azimuth(step)
+                        .and_then(|()| camera.orthogonalize_view_up())
+                        .map_err(|e| value_error(format!("orbiting the camera: {e}")))?;
+                }
+                Ok(images)
+            })
+        })?;
+        images.iter().map(|image| image_array(py, image)).collect()
+    }
+
+    /// The `tetray info` summary of the mesh, and the scene's choices.
+    #[getter]
+    fn info<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let s = &self.info.summary;
+        let d = PyDict::new(py);
+        d.set_item("mesh", &self.info.name)?;
+        d.set_item("format", s.format)?;
+        d.set_item("points", s.points)?;
+        d.set_item("tets", s.tets)?;
+        d.set_item("interior_faces", s.interior_faces)?;
+        d.set_item("boundary_faces", s.boundary_faces)?;
+        d.set_item("components", s.components)?;
+        let (lo, hi) = s.bounds;
+        let o = s.origin;
+        let world = |v: Vec3| (o + v.as_dvec3()).to_array();
+        d.set_item("bounds", (world(lo), world(hi)))?;
+        d.set_item("origin", o.to_array())?;
+        let fields = PyList::empty(py);
+        for f in &s.fields {
+            let fd = PyDict::new(py);
+            fd.set_item("name", &f.name)?;
+            fd.set_item("min", f.min)?;
+            fd.set_item("max", f.max)?;
+            fields.append(fd)?;
+        }
+        d.set_item("fields", fields)?;
+        d.set_item("input_cells", self.info.input_cells)?;
+        d.set_item("cells_split", s.cells_split)?;
+        d.set_item("tets_from_split", s.tets_from_split)?;
+        d.set_item("reoriented", s.inverted_fixed)?;
+        d.set_item("degenerate_dropped", s.degenerate_dropped)?;
+        d.set_item("excluded_cells", s.excluded.cells.len())?;
+        d.set_item("paraview_unit_distance", self.info.paraview_unit_distance)?;
+        d.set_item("load_seconds", self.info.load_seconds)?;
+        d.set_item("warnings", s.warnings.clone())?;
+        let setup = self.setup.read().expect("setup lock");
+        let scene = setup.scene().map_err(to_py)?;
+        d.set_item("field", &scene.field)?;
+        d.set_item(
+            "range",
+            setup.integrator_options.scalar_range.unwrap_or((0.0, 0.0)),
+        )?;
+        d.set_item("unit_distance", setup.unit_distance)?;
+        d.set_item("integrator", setup.method.name())?;
+        d.set_item("renderer", self.engine.name())?;
+        d.set_item("adapter", self.engine.adapter())?;
+        d.set_item("scene_seconds", setup.scene_time.as_secs_f64())?;
+        d.set_item("integrator_seconds", setup.integrator_time.as_secs_f64())?;
+        Ok(d)
+    }
+
+    /// The camera of the scene's first view, in the file's coordinates:
+    /// position, focal_point, view_up, view_angle, parallel_scale.
+    #[getter]
+    fn camera<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let setup = self.setup.read().expect("setup lock");
+        let (c, o) = (&setup.camera, setup.origin);
+        let d = PyDict::new(py);
+        d.set_item("position", (o + c.position.as_dvec3()).to_array())?;
+        d.set_item("focal_point", (o + c.focal_point.as_dvec3()).to_array())?;
+        d.set_item("view_up", c.view_up.to_array())?;
+        d.set_item("view_angle", c.view_angle)?;
+        d.set_item("parallel_scale", c.parallel_scale)?;
+        Ok(d)
+    }
+
+    /// `tetray compare` from the scene's camera at its size: the CPU f64
+    /// reference and each (renderer, integrator, sort) of `specs`. Returns
+    /// the table (JSON rows, as `table.json`'s "methods"), the reference
+    /// image and the images of the specs, in order.
+    #[pyo3(signature = (specs, frames=1))]
+    #[allow(clippy::type_complexity)]
+    fn compare<'py>(
+        &self,
+        py: Python<'py>,
+        specs: Vec<crate::extras::Spec>,
+        frames: u32,
+    ) -> PyResult<(
+        String,
+        Bound<'py, PyArray3<f32>>,
+        Vec<Bound<'py, PyArray3<f32>>>,
+    )> {
+        let size = self.size;
+        let report = py.detach(|| {
+            guard(|| {
+                let mut setup = self.setup.write().expect("setup lock");
+                let info = |line: String| self.log.lock().expect("log lock").0.push(line);
+                crate::extras::compare(&mut setup, &specs, frames, size, &info)
+            })
+        })?;
+        let rows = serde_json::to_string(&report.rows)
+            .map_err(|e| value_error(format!("the comparison table: {e}")))?;
+        let reference = image_array(py, &report.reference.image)?;
+        let images = report
+            .methods
+            .iter()
+            .map(|m| image_array(py, &m.image))
+            .collect::<PyResult<Vec<_>>>()?;
+        Ok((rows, reference, images))
+    }
+
+    /// The progress lines and warnings gathered so far, emptied.
+    fn take_log(&self) -> (Vec<String>, Vec<String>) {
+        let mut log = self.log.lock().expect("log lock");
+        (std::mem::take(&mut log.0), std::mem::take(&mut log.1))
+    }
+}
+
+/// An image as a (height, width, 4) float32 array.
+fn image_array<'py>(
+    py: Python<'py>,
+    image: &tetray_raycast::Image,
+) -> PyResult<Bound<'py, PyArray3<f32>>> {
+    let flat: Vec<f32> = image.rgba.iter().flatten().copied().collect();
+    flat.into_pyarray(py)
+        .reshape([image.height as usize, image.width as usize, 4])
+}
+
+/// Colour points (s, r, g, b) and opacity points (s, alpha) over [0, 1].
+type TfPoints = (Vec<(f32, f32, f32, f32)>, Vec<(f32, f32)>);
+
+enum Source {
+    Grid(Box<tetray_mesh::cells::CellGrid>, String),
+    File(MeshOptions),
+}
+
+fn info_of(input: &MeshInput) -> Info {
+    Info {
+        summary: MeshSummary::new(&input.loaded),
+        name: input.name.clone(),
+        input_cells: input.input_cells(),
+        paraview_unit_distance: input.paraview_unit_distance(),
+        load_seconds: input.load_time.as_secs_f64(),
+    }
+}
+
+fn check_size((w, h): (u32, u32)) -> PyResult<()> {
+    if (1..=16384).contains(&w) && (1..=16384).contains(&h) {
+        Ok(())
+    } else {
+        Err(value_error(format!(
+            "size ({w}, {h}): each side must be a whole number in 1..=16384"
+        )))
+    }
+}
+
+/// CameraOptions from a dict with the keys position, focal_point, view_up
+/// (3 numbers each), view_angle, parallel_scale, azimuth, elevation (None
+/// or absent: not given).
+fn camera_options(dict: Option<&Bound<'_, PyDict>>) -> PyResult<CameraOptions> {
+    let mut options = CameraOptions::default();
+    let Some(dict) = dict else {
+        return Ok(options);
+    };
+    for key in dict.keys() {
+        let key: String = key.extract()?;
+        if ![
+            "position",
+            "focal_point",
+            "view_up",
+            "view_angle",
+            "parallel_scale",
+            "azimuth",
+            "elevation",
+        ]
+        .contains(&key.as_str())
+        {
+            return Err(value_error(format!("camera: unknown key {key:?}")));
+        }
+    }
+    let get = |key: &str| -> PyResult<Option<Bound<'_, PyAny>>> {
+        Ok(dict.get_item(key)?.filter(|v| !v.is_none()))
+    };
+    let finite = |key: &str, v: f64| -> PyResult<f64> {
+        if v.is_finite() {
+            Ok(v)
+        } else {
+            Err(value_error(format!("camera {key}: {v} is not finite")))
+        }
+    };
+    let vec3 = |key: &str| -> PyResult<Option<DVec3>> {
+        match get(key)? {
+            None => Ok(None),
+            Some(v) => {
+                let [x, y, z]: [f64; 3] = v.extract().map_err(|_| {
+                    value_error(format!("camera {key}: expected three numbers (x, y, z)"))
+                })?;
+                Ok(Some(DVec3::new(
+                    finite(key, x)?,
+                    finite(key, y)?,
+                    finite(key, z)?,
+                )))
+            }
+        }
+    };
+    let number = |key: &str| -> PyResult<Option<f32>> {
+        match get(key)? {
+            None => Ok(None),
+            Some(v) => {
+                let v: f64 = v
+                    .extract()
+                    .map_err(|_| value_error(format!("camera {key}: expected a number")))?;
+                Ok(Some(finite(key, v)? as f32))
+            }
+        }
+    };
+    options.camera_position = vec3("position")?;
+    options.focal_point = vec3("focal_point")?;
+    options.view_up = vec3("view_up")?.map(|v| v.as_vec3());
+    if let Some(angle) = number("view_angle")? {
+        if !(angle > 0.0 && angle < 180.0) {
+            return Err(value_error(format!(
+                "camera view_angle: {angle} degrees is outside (0, 180)"
+            )));
+        }
+        options.view_angle = angle;
+    }
+    options.parallel_scale = number("parallel_scale")?;
+    if let Some(s) = options.parallel_scale.filter(|s| *s <= 0.0) {
+        return Err(value_error(format!(
+            "camera parallel_scale: {s} must be greater than 0"
+        )));
+    }
+    options.azimuth = number("azimuth")?;
+    options.elevation = number("elevation")?;
+    Ok(options)
+}
