@@ -19,8 +19,9 @@ use crate::GpuError;
 /// created), skips it. The order it would give matters little here: wgpu
 /// ranks adapters by type and `WGPU_POWER_PREF` itself. Left alone when
 /// the user chose (`NODEVICE_SELECT`, `MESA_VK_DEVICE_SELECT`,
-/// `DRI_PRIME`) or when a Wayland connection could succeed.
-fn quiet_device_select() {
+/// `DRI_PRIME`) or when a Wayland connection could succeed. Call it before
+/// creating a wgpu instance elsewhere (the viewer's eframe device).
+pub fn quiet_device_select() {
     let set = |name: &str| std::env::var_os(name).is_some_and(|v| !v.is_empty());
     if set("NODEVICE_SELECT") || set("MESA_VK_DEVICE_SELECT") || set("DRI_PRIME") {
         return;

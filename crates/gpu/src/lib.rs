@@ -26,7 +26,7 @@ mod target;
 pub mod twin;
 mod upload;
 
-pub use context::GpuContext;
+pub use context::{quiet_device_select, GpuContext};
 pub use error::GpuError;
 pub use render::{
     frame_params, FrameJob, GpuFrame, GpuRaycaster, GpuRenderOptions, GpuStats, SceneLayout, TILE,
