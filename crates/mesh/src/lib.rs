@@ -46,7 +46,7 @@ pub use loaded::{finish, prepare, ElementBlock, LoadReport, LoadedMesh, MeshRead
 pub use scale::{
     default_field, mean_chord, mean_tet_chord, paraview_unit_distance, tet_chord_sum, value_range,
 };
-pub use topology::MAX_TETS;
+pub use topology::{boundary_faces_of, MAX_TETS};
 pub use validate::{validate, validate_with_topology, ValidationReport};
 
 use glam::Vec3;
@@ -91,9 +91,7 @@ pub struct Topology {
     /// `neighbors[t][f]`: the tetrahedron across local face `f` of `t`, or
     /// [`NO_NEIGHBOR`].
     pub neighbors: Vec<[u32; 4]>,
-    /// Every boundary face, outward oriented.
+    /// Every boundary face, outward oriented, listed by tetrahedron, then
+    /// local face ([`Topology::boundary_face_index`] finds one).
     pub boundary_faces: Vec<BoundaryFace>,
-    /// `boundary_index[t][f]`: index into `boundary_faces` when face `f` of
-    /// `t` is on the boundary, else `u32::MAX`.
-    pub boundary_index: Vec<[u32; 4]>,
 }

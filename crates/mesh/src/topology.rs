@@ -128,6 +128,25 @@ impl FaceBuckets {
     }
 }
 
+/// The faces of `tets` with no neighbour in `neighbors`, outward oriented
+/// when the tetrahedra are positively oriented, listed by tetrahedron, then
+/// local face.
+pub fn boundary_faces_of(neighbors: &[[u32; 4]], tets: &[[u32; 4]]) -> Vec<BoundaryFace> {
+    let mut faces = Vec::new();
+    for (t, (nb, tet)) in neighbors.iter().zip(tets).enumerate() {
+        for (f, &n) in nb.iter().enumerate() {
+            if n == NO_NEIGHBOR {
+                faces.push(BoundaryFace {
+                    tet: t as u32,
+                    local_face: f as u8,
+                    vertices: FACE_VERTICES[f].map(|v| tet[v]),
+                });
+            }
+        }
+    }
+    faces
+}
+
 impl Topology {
     /// Matches the faces of `mesh`'s tetrahedra.
     ///
@@ -182,25 +201,21 @@ impl Topology {
         };
         drop(faces);
 
-        let mut boundary_faces = Vec::new();
-        let mut boundary_index = vec![[u32::MAX; 4]; n];
-        for (t, (nb, tet)) in neighbors.iter().zip(&mesh.tets).enumerate() {
-            for f in 0..4 {
-                if nb[f] == NO_NEIGHBOR {
-                    boundary_index[t][f] = boundary_faces.len() as u32;
-                    boundary_faces.push(BoundaryFace {
-                        tet: t as u32,
-                        local_face: f as u8,
-                        vertices: FACE_VERTICES[f].map(|v| tet[v]),
-                    });
-                }
-            }
-        }
+        let boundary_faces = boundary_faces_of(&neighbors, &mesh.tets);
         Ok(Topology {
             neighbors,
             boundary_faces,
-            boundary_index,
         })
+    }
+
+    /// The index in `boundary_faces` of local face `f` of `tet`, when that
+    /// face is on the boundary (a binary search: the list is ordered by
+    /// tetrahedron, then local face).
+    pub fn boundary_face_index(&self, tet: u32, f: usize) -> Option<usize> {
+        let key = (tet, u8::try_from(f).ok()?);
+        self.boundary_faces
+            .binary_search_by_key(&key, |b| (b.tet, b.local_face))
+            .ok()
     }
 
     /// The local face of `neighbor` that is shared with `tet`, if they are

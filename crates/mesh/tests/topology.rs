@@ -49,12 +49,14 @@ fn check_consistent(mesh: &TetMesh, topo: &Topology) {
     for (t, nbs) in topo.neighbors.iter().enumerate() {
         for (f, &nb) in nbs.iter().enumerate() {
             if nb == NO_NEIGHBOR {
-                let b = topo.boundary_index[t][f] as usize;
+                let b = topo
+                    .boundary_face_index(t as u32, f)
+                    .expect("a face with no neighbour is a boundary face");
                 let face = topo.boundary_faces[b];
                 assert_eq!((face.tet as usize, face.local_face as usize), (t, f));
                 continue;
             }
-            assert_eq!(topo.boundary_index[t][f], u32::MAX);
+            assert_eq!(topo.boundary_face_index(t as u32, f), None);
             let back = topo.shared_face(t as u32, nb).expect("neighbour symmetry");
             let mut mine = FACE_VERTICES[f].map(|v| mesh.tets[t][v]);
             let mut theirs = FACE_VERTICES[back].map(|v| mesh.tets[nb as usize][v]);

@@ -9,7 +9,7 @@
 //! numbering ([`Reorder::tet_from`], [`Reorder::point_from`]).
 
 use rayon::prelude::*;
-use tetray_mesh::{BoundaryFace, TetMesh, Topology, FACE_VERTICES, NO_NEIGHBOR};
+use tetray_mesh::{boundary_faces_of, TetMesh, Topology, NO_NEIGHBOR};
 
 /// Bits per axis of the Morton code (3 x 21 = 63 bits).
 const BITS: u32 = 21;
@@ -118,26 +118,8 @@ pub(crate) fn morton_reorder(
             })
         })
         .collect();
-    // Boundary faces are listed by tetrahedron, then local face.
     drop(tet_to);
-    let mut boundary_faces = Vec::with_capacity(topology.boundary_faces.len());
-    // The old index goes first: not two of them at once.
-    topology.boundary_index = Vec::new();
-    let mut boundary_index = vec![[u32::MAX; 4]; mesh.tets.len()];
-    for (t, (nb, tet)) in topology.neighbors.iter().zip(&mesh.tets).enumerate() {
-        for f in 0..4 {
-            if nb[f] == NO_NEIGHBOR {
-                boundary_index[t][f] = boundary_faces.len() as u32;
-                boundary_faces.push(BoundaryFace {
-                    tet: t as u32,
-                    local_face: f as u8,
-                    vertices: FACE_VERTICES[f].map(|v| tet[v]),
-                });
-            }
-        }
-    }
-    topology.boundary_faces = boundary_faces;
-    topology.boundary_index = boundary_index;
+    topology.boundary_faces = boundary_faces_of(&topology.neighbors, &mesh.tets);
     Reorder {
         tet_from,
         point_from,

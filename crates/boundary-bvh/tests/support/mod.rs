@@ -29,11 +29,9 @@ pub fn topology(mesh: &TetMesh) -> Topology {
         }
     }
     let mut boundary_faces = Vec::new();
-    let mut boundary_index = vec![[u32::MAX; 4]; mesh.tets.len()];
     for (t, tet) in (0u32..).zip(&mesh.tets) {
         for (f, local) in FACE_VERTICES.iter().enumerate() {
             if neighbors[t as usize][f] == NO_NEIGHBOR {
-                boundary_index[t as usize][f] = boundary_faces.len() as u32;
                 boundary_faces.push(BoundaryFace {
                     tet: t,
                     local_face: f as u8,
@@ -45,7 +43,6 @@ pub fn topology(mesh: &TetMesh) -> Topology {
     Topology {
         neighbors,
         boundary_faces,
-        boundary_index,
     }
 }
 
