@@ -5,8 +5,10 @@
 //! tetrahedron, its three point indices sorted, goes to the bucket of its
 //! smallest point (a counting sort over the points), each bucket is sorted
 //! by the other two (in parallel; buckets hold a few dozen faces), and
-//! each tetrahedron then finds the other side of each of its faces by a
-//! binary search in one bucket (in parallel, writing only its own row).
+//! the two faces of each run of equal points are each other's neighbour
+//! (buckets in parallel, each face written once).
+
+use std::sync::atomic::{AtomicU32, Ordering};
 
 use rayon::prelude::*;
 
@@ -27,20 +29,15 @@ fn sorted_face(tet: &[u32; 4], f: usize) -> [u32; 3] {
     v
 }
 
+/// A face shared by more than two tetrahedra: its points and theirs.
+type SharedFace = ([u32; 3], Vec<u32>);
+
 /// Every face of every tetrahedron, in buckets by smallest point: bucket
 /// `p` is `entries[offsets[p]..offsets[p + 1]]`, each entry the other two
 /// points and the face's id `4 * tet + local_face`, sorted.
 struct FaceBuckets {
     offsets: Vec<u32>,
     entries: Vec<[u32; 3]>,
-}
-
-/// What lies across a face.
-enum OtherSide {
-    Boundary,
-    Face(u32),
-    /// More than two tetrahedra share it.
-    NonManifold,
 }
 
 impl FaceBuckets {
@@ -92,30 +89,63 @@ impl FaceBuckets {
         FaceBuckets { offsets, entries }
     }
 
-    /// The faces equal to `face` (sorted points), its own included.
-    fn same_faces(&self, [a, b, c]: [u32; 3]) -> &[[u32; 3]] {
-        let bucket =
-            &self.entries[self.offsets[a as usize] as usize..self.offsets[a as usize + 1] as usize];
-        let lo = bucket.partition_point(|e| (e[0], e[1]) < (b, c));
-        let len = bucket[lo..].partition_point(|e| (e[0], e[1]) == (b, c));
-        &bucket[lo..lo + len]
+    /// The neighbour across every face of `tets` tetrahedra, bucket by
+    /// bucket (in parallel): the two faces of a run of equal points are
+    /// each other's other side, so each face is read once, in order. Each
+    /// face id is written by its own run only, so relaxed stores suffice.
+    /// On a run of more than two faces: the non-manifold face with the
+    /// smallest points and its tetrahedra.
+    fn neighbors(&self, tets: usize) -> Result<Vec<[u32; 4]>, SharedFace> {
+        let slots: Vec<AtomicU32> = (0..4 * tets)
+            .into_par_iter()
+            .map(|_| AtomicU32::new(NO_NEIGHBOR))
+            .collect();
+        let points = self.offsets.len().saturating_sub(1);
+        let shared_by_more = (0..points)
+            .into_par_iter()
+            .with_min_len(BUCKETS_PER_TASK)
+            .find_map_any(|p| {
+                let bucket = self.bucket(p);
+                let mut i = 0;
+                while i < bucket.len() {
+                    let key = (bucket[i][0], bucket[i][1]);
+                    let run = bucket[i..].partition_point(|e| (e[0], e[1]) == key);
+                    match run {
+                        1 => {}
+                        2 => {
+                            let (x, y) = (bucket[i][2], bucket[i + 1][2]);
+                            slots[x as usize].store(y / 4, Ordering::Relaxed);
+                            slots[y as usize].store(x / 4, Ordering::Relaxed);
+                        }
+                        _ => {
+                            let tets = bucket[i..i + run].iter().map(|e| e[2] / 4).collect();
+                            return Some(([p as u32, key.0, key.1], tets));
+                        }
+                    }
+                    i += run;
+                }
+                None
+            });
+        if let Some(found) = shared_by_more {
+            // The same face whatever the thread count: the smallest points.
+            return Err(self.first_non_manifold().unwrap_or(found));
+        }
+        Ok(slots
+            .par_chunks(4)
+            .map(|c| std::array::from_fn(|f| c[f].load(Ordering::Relaxed)))
+            .collect())
     }
 
-    /// What lies across face `f` of tetrahedron `t`.
-    fn other_side(&self, tet: &[u32; 4], t: usize, f: usize) -> OtherSide {
-        let id = 4 * t as u32 + f as u32;
-        match self.same_faces(sorted_face(tet, f)) {
-            [_] => OtherSide::Boundary,
-            [x, y] => OtherSide::Face(if x[2] == id { y[2] } else { x[2] }),
-            _ => OtherSide::NonManifold,
-        }
+    /// The faces whose smallest point is `p`.
+    fn bucket(&self, p: usize) -> &[[u32; 3]] {
+        &self.entries[self.offsets[p] as usize..self.offsets[p + 1] as usize]
     }
 
     /// The non-manifold face with the smallest points (the same one
     /// whatever the thread count): its points and tetrahedra.
-    fn first_non_manifold(&self) -> Option<([u32; 3], Vec<u32>)> {
+    fn first_non_manifold(&self) -> Option<SharedFace> {
         (0..self.offsets.len().saturating_sub(1)).find_map(|a| {
-            let bucket = &self.entries[self.offsets[a] as usize..self.offsets[a + 1] as usize];
+            let bucket = self.bucket(a);
             bucket.iter().enumerate().find_map(|(i, e)| {
                 let run = bucket[i..].partition_point(|x| (x[0], x[1]) == (e[0], e[1]));
                 let first_of_run = i == 0 || (bucket[i - 1][0], bucket[i - 1][1]) != (e[0], e[1]);
@@ -169,36 +199,9 @@ impl Topology {
             });
         }
         let faces = FaceBuckets::new(&mesh.tets);
-        let neighbors: Result<Vec<[u32; 4]>, [u32; 3]> = mesh
-            .tets
-            .par_iter()
-            .enumerate()
-            .map(|(t, tet)| {
-                let mut row = [NO_NEIGHBOR; 4];
-                for (f, slot) in row.iter_mut().enumerate() {
-                    match faces.other_side(tet, t, f) {
-                        OtherSide::Boundary => {}
-                        OtherSide::Face(id) => *slot = id / 4,
-                        OtherSide::NonManifold => return Err(sorted_face(tet, f)),
-                    }
-                }
-                Ok(row)
-            })
-            .collect();
-        let neighbors = match neighbors {
-            Ok(neighbors) => neighbors,
-            Err(face) => {
-                // Report the same face whatever the thread count: the one
-                // with the smallest points.
-                let (vertices, tets) = faces.first_non_manifold().unwrap_or_else(|| {
-                    (
-                        face,
-                        faces.same_faces(face).iter().map(|e| e[2] / 4).collect(),
-                    )
-                });
-                return Err(MeshError::NonManifoldFace { vertices, tets });
-            }
-        };
+        let neighbors = faces
+            .neighbors(n)
+            .map_err(|(vertices, tets)| MeshError::NonManifoldFace { vertices, tets })?;
         drop(faces);
 
         let boundary_faces = boundary_faces_of(&neighbors, &mesh.tets);
