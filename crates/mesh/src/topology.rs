@@ -89,13 +89,14 @@ impl FaceBuckets {
         FaceBuckets { offsets, entries }
     }
 
-    /// The neighbour across every face of `tets` tetrahedra, bucket by
+    /// The neighbour across every face (by face id `4 * tet + local_face`)
+    /// of `tets` tetrahedra, bucket by
     /// bucket (in parallel): the two faces of a run of equal points are
     /// each other's other side, so each face is read once, in order. Each
     /// face id is written by its own run only, so relaxed stores suffice.
     /// On a run of more than two faces: the non-manifold face with the
     /// smallest points and its tetrahedra.
-    fn neighbors(&self, tets: usize) -> Result<Vec<[u32; 4]>, SharedFace> {
+    fn neighbors(&self, tets: usize) -> Result<Vec<AtomicU32>, SharedFace> {
         let slots: Vec<AtomicU32> = (0..4 * tets)
             .into_par_iter()
             .map(|_| AtomicU32::new(NO_NEIGHBOR))
@@ -130,10 +131,7 @@ impl FaceBuckets {
             // The same face whatever the thread count: the smallest points.
             return Err(self.first_non_manifold().unwrap_or(found));
         }
-        Ok(slots
-            .par_chunks(4)
-            .map(|c| std::array::from_fn(|f| c[f].load(Ordering::Relaxed)))
-            .collect())
+        Ok(slots)
     }
 
     /// The faces whose smallest point is `p`.
@@ -199,10 +197,16 @@ impl Topology {
             });
         }
         let faces = FaceBuckets::new(&mesh.tets);
-        let neighbors = faces
+        let slots = faces
             .neighbors(n)
             .map_err(|(vertices, tets)| MeshError::NonManifoldFace { vertices, tets })?;
+        // The buckets go before the rows are made: not both in memory.
         drop(faces);
+        let neighbors: Vec<[u32; 4]> = slots
+            .par_chunks(4)
+            .map(|c| std::array::from_fn(|f| c[f].load(Ordering::Relaxed)))
+            .collect();
+        drop(slots);
 
         let boundary_faces = boundary_faces_of(&neighbors, &mesh.tets);
         Ok(Topology {
