@@ -131,6 +131,62 @@ fn components_are_counted() {
     assert_eq!(topo.components(), (2, vec![0, 0, 1]));
 }
 
+/// Components by a breadth-first search, labels in order of first
+/// tetrahedron: the reference for [`Topology::components`].
+fn components_by_search(topo: &Topology) -> (usize, Vec<u32>) {
+    let mut label = vec![u32::MAX; topo.neighbors.len()];
+    let mut count = 0;
+    for seed in 0..label.len() {
+        if label[seed] != u32::MAX {
+            continue;
+        }
+        label[seed] = count;
+        let mut queue = std::collections::VecDeque::from([seed]);
+        while let Some(t) = queue.pop_front() {
+            for &nb in &topo.neighbors[t] {
+                if nb != NO_NEIGHBOR && label[nb as usize] == u32::MAX {
+                    label[nb as usize] = count;
+                    queue.push_back(nb as usize);
+                }
+            }
+        }
+        count += 1;
+    }
+    (count as usize, label)
+}
+
+#[test]
+fn components_of_many_shuffled_blocks_match_a_search() {
+    // 41 disjoint 6^3-point grids (625 tetrahedra each, 25 625 in all: more
+    // than one parallel task) with their tetrahedra shuffled together, so
+    // components interleave in the numbering and unions race.
+    let block = grid(6);
+    let mut mesh = TetMesh {
+        points: vec![],
+        tets: vec![],
+        fields: vec![],
+    };
+    for b in 0..41u32 {
+        let offset = mesh.points.len() as u32;
+        let shift = Vec3::new(2.0 * b as f32, 0.0, 0.0);
+        mesh.points.extend(block.points.iter().map(|p| *p + shift));
+        mesh.tets
+            .extend(block.tets.iter().map(|t| t.map(|v| v + offset)));
+    }
+    let mut state = 0x2545_f491_4f6c_dd1du64;
+    for i in (1..mesh.tets.len()).rev() {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1);
+        mesh.tets.swap(i, (state >> 33) as usize % (i + 1));
+    }
+    mesh.orient();
+    let topo = Topology::build(&mesh).unwrap();
+    let (count, label) = topo.components();
+    assert_eq!(count, 41);
+    assert_eq!((count, label), components_by_search(&topo));
+}
+
 #[test]
 fn face_shared_by_three_tets_is_named() {
     let mut mesh = two_tets();
