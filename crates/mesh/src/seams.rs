@@ -10,13 +10,19 @@ use crate::Topology;
 /// coordinates (itself when it is unique). `-0.0` equals `0.0`.
 pub(crate) fn duplicate_points(points: &[Vec3]) -> Vec<u32> {
     let bits = |p: Vec3| p.to_array().map(|c| (c + 0.0).to_bits());
-    let mut order: Vec<u32> = (0..points.len() as u32).collect();
-    order.par_sort_unstable_by_key(|&i| (bits(points[i as usize]), i));
+    // Keys sorted with their points' indices beside them: no comparison
+    // reads the point array.
+    let mut keyed: Vec<([u32; 3], u32)> = points
+        .par_iter()
+        .enumerate()
+        .map(|(i, &p)| (bits(p), i as u32))
+        .collect();
+    keyed.par_sort_unstable();
     let mut canonical: Vec<u32> = (0..points.len() as u32).collect();
-    for run in order.chunk_by(|&a, &b| bits(points[a as usize]) == bits(points[b as usize])) {
+    for run in keyed.chunk_by(|a, b| a.0 == b.0) {
         // Sorted by index within a run, so run[0] is the lowest.
-        for &i in &run[1..] {
-            canonical[i as usize] = run[0];
+        for &(_, i) in &run[1..] {
+            canonical[i as usize] = run[0].1;
         }
     }
     canonical
