@@ -105,6 +105,84 @@ pub(crate) fn element_i64(ty: Scalar, b: &[u8], big_endian: bool) -> Option<i64>
     }
 }
 
+/// Elements per rayon task when a whole array is decoded.
+const DECODE_CHUNK: usize = 1 << 16;
+
+/// Decodes a whole array of `ty` elements to `T`, in parallel, with the
+/// element width and byte order fixed outside the loop (`convert` takes
+/// the element's bits widened to 64, then its sign extended for signed
+/// types).
+fn decode_all<T: Send, const N: usize>(
+    bytes: &[u8],
+    big_endian: bool,
+    convert: impl Fn(u64) -> T + Sync,
+) -> Vec<T> {
+    use rayon::prelude::*;
+    let read = |b: &[u8]| {
+        let mut word = [0u8; 8];
+        if big_endian {
+            word[8 - N..].copy_from_slice(b);
+            u64::from_be_bytes(word)
+        } else {
+            word[..N].copy_from_slice(b);
+            u64::from_le_bytes(word)
+        }
+    };
+    bytes
+        .par_chunks_exact(N)
+        .with_min_len(DECODE_CHUNK)
+        .map(|b| convert(read(b)))
+        .collect()
+}
+
+/// Sign-extends the low `bits` bits of `u`.
+fn signed(u: u64, bits: u32) -> i64 {
+    ((u << (64 - bits)) as i64) >> (64 - bits)
+}
+
+/// A whole array of `ty` elements (a whole number of them) as f64, equal
+/// to [`element_f64`] of each element.
+pub(crate) fn decode_f64(ty: Scalar, bytes: &[u8], big_endian: bool) -> Vec<f64> {
+    let b = big_endian;
+    match ty {
+        Scalar::F32 => decode_all::<_, 4>(bytes, b, |u| f32::from_bits(u as u32) as f64),
+        Scalar::F64 => decode_all::<_, 8>(bytes, b, f64::from_bits),
+        Scalar::U8 => decode_all::<_, 1>(bytes, b, |u| u as f64),
+        Scalar::U16 => decode_all::<_, 2>(bytes, b, |u| u as f64),
+        Scalar::U32 => decode_all::<_, 4>(bytes, b, |u| u as f64),
+        Scalar::U64 => decode_all::<_, 8>(bytes, b, |u| u as f64),
+        Scalar::I8 => decode_all::<_, 1>(bytes, b, |u| signed(u, 8) as f64),
+        Scalar::I16 => decode_all::<_, 2>(bytes, b, |u| signed(u, 16) as f64),
+        Scalar::I32 => decode_all::<_, 4>(bytes, b, |u| signed(u, 32) as f64),
+        Scalar::I64 => decode_all::<_, 8>(bytes, b, |u| u as i64 as f64),
+    }
+}
+
+/// A whole array of integer elements as i64, equal to [`element_i64`] of
+/// each element; `Err(i)`: element `i` is a float type's or an unsigned
+/// value beyond i64.
+pub(crate) fn decode_i64(ty: Scalar, bytes: &[u8], big_endian: bool) -> Result<Vec<i64>, usize> {
+    let b = big_endian;
+    Ok(match ty {
+        Scalar::F32 | Scalar::F64 => return if bytes.is_empty() { Ok(vec![]) } else { Err(0) },
+        Scalar::U8 => decode_all::<_, 1>(bytes, b, |u| u as i64),
+        Scalar::U16 => decode_all::<_, 2>(bytes, b, |u| u as i64),
+        Scalar::U32 => decode_all::<_, 4>(bytes, b, |u| u as i64),
+        Scalar::U64 => {
+            let out = decode_all::<_, 8>(bytes, b, |u| u as i64);
+            // Beyond i64 reads as negative.
+            if let Some(i) = out.iter().position(|&v| v < 0) {
+                return Err(i);
+            }
+            out
+        }
+        Scalar::I8 => decode_all::<_, 1>(bytes, b, |u| signed(u, 8)),
+        Scalar::I16 => decode_all::<_, 2>(bytes, b, |u| signed(u, 16)),
+        Scalar::I32 => decode_all::<_, 4>(bytes, b, |u| signed(u, 32)),
+        Scalar::I64 => decode_all::<_, 8>(bytes, b, |u| u as i64),
+    })
+}
+
 /// The bytes as an unsigned integer of their length (1 to 8).
 pub(crate) fn u64_of(b: &[u8], big_endian: bool) -> u64 {
     let fold = |acc: u64, &x: &u8| (acc << 8) | x as u64;
@@ -175,6 +253,58 @@ mod tests {
             -2.25
         );
         assert_eq!(element_f64(Scalar::I8, &[0x80], false), -128.0);
+    }
+
+    #[test]
+    fn whole_arrays_decode_as_each_element_does() {
+        // Pseudo-random bytes, long enough for several parallel tasks, in
+        // every type and both byte orders, against the per-element decoders.
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let bytes: Vec<u8> = (0..3 * DECODE_CHUNK * 8)
+            .map(|_| {
+                state ^= state << 13;
+                state ^= state >> 7;
+                state ^= state << 17;
+                state as u8
+            })
+            .collect();
+        let types = [
+            Scalar::I8,
+            Scalar::U8,
+            Scalar::I16,
+            Scalar::U16,
+            Scalar::I32,
+            Scalar::U32,
+            Scalar::I64,
+            Scalar::U64,
+            Scalar::F32,
+            Scalar::F64,
+        ];
+        for ty in types {
+            for big in [false, true] {
+                let floats = decode_f64(ty, &bytes, big);
+                let ints = decode_i64(ty, &bytes, big);
+                let elements = bytes.chunks_exact(ty.size());
+                assert_eq!(floats.len(), elements.len());
+                for (i, b) in elements.clone().enumerate() {
+                    let f = element_f64(ty, b, big);
+                    assert!(
+                        floats[i] == f || (f.is_nan() && floats[i].is_nan()),
+                        "{ty:?} {i}"
+                    );
+                }
+                for (i, b) in elements.enumerate() {
+                    match element_i64(ty, b, big) {
+                        Some(v) => assert_eq!(ints.as_ref().map(|a| a[i]), Ok(v), "{ty:?} {i}"),
+                        // The first element that does not fit is the error.
+                        None => {
+                            assert_eq!(ints, Err(i), "{ty:?}");
+                            break;
+                        }
+                    }
+                }
+            }
+        }
     }
 
     #[test]

@@ -10,10 +10,11 @@
 //! as two separately padded ones; decoding group by group (four characters
 //! at a time, padding allowed in any group) reads both.
 
+use std::borrow::Cow;
 use std::io::Read;
 
 use super::tree::{AppendedEncoding, Format, VtuDoc, XmlArray};
-use crate::vtk::numeric::{element_f64, element_i64, parse_f64, parse_i64, u64_of, Scalar};
+use crate::vtk::numeric::{decode_f64, decode_i64, parse_f64, parse_i64, u64_of, Scalar};
 use crate::vtk::VtkError;
 
 pub(crate) const ZLIB: &str = "vtkZLibDataCompressor";
@@ -41,11 +42,7 @@ impl ArrayDecoder<'_, '_> {
             return self.ascii(a, ty, section, parse_f64);
         }
         let bytes = self.payload(a, ty, section)?;
-        let big = self.doc.big_endian;
-        Ok(bytes
-            .chunks_exact(ty.size())
-            .map(|b| element_f64(ty, b, big))
-            .collect())
+        Ok(decode_f64(ty, &bytes, self.doc.big_endian))
     }
 
     /// The array's values as integers; float arrays are refused.
@@ -62,16 +59,11 @@ impl ArrayDecoder<'_, '_> {
             return self.ascii(a, ty, section, parse_i64);
         }
         let bytes = self.payload(a, ty, section)?;
-        let mut out = Vec::with_capacity(bytes.len() / ty.size());
-        for (i, b) in bytes.chunks_exact(ty.size()).enumerate() {
-            let v = element_i64(ty, b, self.doc.big_endian).ok_or_else(|| VtkError::Invalid {
-                file: self.file.into(),
-                section: section.into(),
-                message: format!("value {i} does not fit in a signed 64-bit integer"),
-            })?;
-            out.push(v);
-        }
-        Ok(out)
+        decode_i64(ty, &bytes, self.doc.big_endian).map_err(|i| VtkError::Invalid {
+            file: self.file.into(),
+            section: section.into(),
+            message: format!("value {i} does not fit in a signed 64-bit integer"),
+        })
     }
 
     fn ascii<T>(
@@ -106,15 +98,21 @@ impl ArrayDecoder<'_, '_> {
     }
 
     /// The decoded (and inflated) bytes of a binary or appended array, a
-    /// whole number of elements of `ty`.
-    fn payload(&self, a: &XmlArray, ty: Scalar, section: &str) -> Result<Vec<u8>, VtkError> {
+    /// whole number of elements of `ty`; raw appended data is borrowed, not
+    /// copied.
+    fn payload<'s>(
+        &'s self,
+        a: &'s XmlArray,
+        ty: Scalar,
+        section: &'s str,
+    ) -> Result<Cow<'s, [u8]>, VtkError> {
         let mut source = self.source(a, section)?;
         let bytes = match self.doc.compressor.as_deref() {
             None => {
                 let n = self.header_value(&mut source)?;
                 source.take(n)?
             }
-            Some(ZLIB) => self.inflate(&mut source)?,
+            Some(ZLIB) => Cow::Owned(self.inflate(&mut source)?),
             Some(other) => {
                 return Err(VtkError::Unsupported {
                     file: self.file.into(),
@@ -212,7 +210,7 @@ impl ArrayDecoder<'_, '_> {
                 message,
             };
             let before = out.len();
-            let mut decoder = flate2::read::ZlibDecoder::new(compressed.as_slice());
+            let mut decoder = flate2::read::ZlibDecoder::new(&compressed[..]);
             (&mut decoder)
                 .take((expected as u64).saturating_add(1))
                 .read_to_end(&mut out)
@@ -281,8 +279,8 @@ impl<'s> Source<'s> {
         }
     }
 
-    /// The next `n` bytes.
-    fn take(&mut self, n: usize) -> Result<Vec<u8>, VtkError> {
+    /// The next `n` bytes (borrowed from raw data, decoded from base64).
+    fn take(&mut self, n: usize) -> Result<Cow<'s, [u8]>, VtkError> {
         match self {
             Source::Raw { data, pos, context } => {
                 let left = data.len() - *pos;
@@ -290,9 +288,10 @@ impl<'s> Source<'s> {
                     return Err(context.truncated(n, left));
                 }
                 *pos += n;
-                Ok(data[*pos - n..*pos].to_vec())
+                let data: &'s [u8] = data;
+                Ok(Cow::Borrowed(&data[*pos - n..*pos]))
             }
-            Source::Base64(stream) => stream.take(n),
+            Source::Base64(stream) => stream.take(n).map(Cow::Owned),
         }
     }
 }
@@ -387,7 +386,9 @@ mod tests {
             file: "t",
             section: "s",
         };
-        Source::base64(text.as_bytes(), context).take(n)
+        Source::base64(text.as_bytes(), context)
+            .take(n)
+            .map(Cow::into_owned)
     }
 
     #[test]
