@@ -25,21 +25,23 @@ impl BoundaryBvh {
         }
         first_slot
             .par_iter()
-            .map(|&slot| {
+            .map_init(Vec::new, |stack, &slot| {
                 let [a, b, c] = self.prim_tris[slot].map(|p| p.as_dvec3());
                 let normal = (b - a).cross(c - a);
-                normal.length() > 0.0 && self.all_behind(a, normal)
+                normal.length() > 0.0 && self.all_behind(a, normal, stack)
             })
             .collect()
     }
 
     /// Whether every boundary point `q` has `(q - point) . normal <= 0`
-    /// (up to [`COPLANAR_REL`]), pruning subtrees whose boxes lie behind.
-    fn all_behind(&self, point: DVec3, normal: DVec3) -> bool {
+    /// (up to [`COPLANAR_REL`]), pruning subtrees whose boxes lie behind
+    /// (`stack`: the traversal's, reused between calls).
+    fn all_behind(&self, point: DVec3, normal: DVec3, stack: &mut Vec<u32>) -> bool {
         let nodes = &self.bvh.nodes;
         let abs_normal = normal.abs();
         let normal_length = normal.length();
-        let mut stack = vec![0u32];
+        stack.clear();
+        stack.push(0);
         while let Some(index) = stack.pop() {
             let node = &nodes[index as usize];
             let aabb = node.aabb();
@@ -48,8 +50,12 @@ impl BoundaryBvh {
             let half = 0.5 * (hi - lo);
             // The box's farthest corner in front of the plane.
             let reach = (centre - point).dot(normal) + half.dot(abs_normal);
-            let slack = COPLANAR_REL * normal_length * ((centre - point).length() + half.length());
-            if reach <= slack {
+            // The slack is never negative: a box wholly behind needs no
+            // square root.
+            if reach <= 0.0
+                || reach
+                    <= COPLANAR_REL * normal_length * ((centre - point).length() + half.length())
+            {
                 continue;
             }
             if node.is_leaf() {
@@ -57,7 +63,8 @@ impl BoundaryBvh {
                 for tri in &self.prim_tris[first..first + node.prim_count as usize] {
                     for q in tri.map(|q| q.as_dvec3()) {
                         let d = q - point;
-                        if d.dot(normal) > COPLANAR_REL * normal_length * d.length() {
+                        let ahead = d.dot(normal);
+                        if ahead > 0.0 && ahead > COPLANAR_REL * normal_length * d.length() {
                             return false;
                         }
                     }
