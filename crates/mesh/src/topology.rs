@@ -3,10 +3,11 @@
 //!
 //! Faces are matched by bucketing, not hashing: every face of every
 //! tetrahedron, its three point indices sorted, goes to the bucket of its
-//! smallest point (a counting sort over the points), each bucket is sorted
-//! by the other two (in parallel; buckets hold a few dozen faces), and
-//! the two faces of each run of equal points are each other's neighbour
-//! (buckets in parallel, each face written once).
+//! smallest point (a counting sort over the points, 4 bytes per face),
+//! then each bucket (in parallel; buckets hold a few dozen faces) is
+//! sorted by the other two points, read back from the tetrahedra, and the
+//! two faces of each run of equal points are each other's neighbour (each
+//! face written once).
 
 use std::sync::atomic::{AtomicU32, Ordering};
 
@@ -33,15 +34,21 @@ fn sorted_face(tet: &[u32; 4], f: usize) -> [u32; 3] {
 type SharedFace = ([u32; 3], Vec<u32>);
 
 /// Every face of every tetrahedron, in buckets by smallest point: bucket
-/// `p` is `entries[offsets[p]..offsets[p + 1]]`, each entry the other two
-/// points and the face's id `4 * tet + local_face`, sorted.
-struct FaceBuckets {
+/// `p` is `entries[offsets[p]..offsets[p + 1]]`, each entry a face id
+/// `4 * tet + local_face` (4 bytes per face: the other two points are read
+/// back from the tetrahedra when a bucket is matched).
+struct FaceBuckets<'t> {
+    tets: &'t [[u32; 4]],
     offsets: Vec<u32>,
-    entries: Vec<[u32; 3]>,
+    entries: Vec<u32>,
 }
 
-impl FaceBuckets {
-    fn new(tets: &[[u32; 4]]) -> FaceBuckets {
+/// One face of a bucket while it is matched: its other two points (the
+/// larger in the low half) over its face id.
+type FaceKey = (u64, u32);
+
+impl<'t> FaceBuckets<'t> {
+    fn new(tets: &'t [[u32; 4]]) -> FaceBuckets<'t> {
         let points = tets
             .par_iter()
             .map(|t| t.iter().copied().max().unwrap_or(0) as usize + 1)
@@ -57,47 +64,41 @@ impl FaceBuckets {
             offsets[p + 1] += offsets[p];
         }
         let mut cursor = offsets.clone();
-        let mut entries = vec![[0u32; 3]; 4 * tets.len()];
+        let mut entries = vec![0u32; 4 * tets.len()];
         for (t, tet) in tets.iter().enumerate() {
             for f in 0..4 {
-                let [a, b, c] = sorted_face(tet, f);
-                let slot = &mut cursor[a as usize];
+                let slot = &mut cursor[sorted_face(tet, f)[0] as usize];
                 // t < MAX_TETS, so 4 t + 3 fits in u32.
-                entries[*slot as usize] = [b, c, 4 * t as u32 + f as u32];
+                entries[*slot as usize] = 4 * t as u32 + f as u32;
                 *slot += 1;
             }
         }
-        drop(cursor);
-        // Each task sorts the buckets of a run of points: split the entries
-        // at those runs' offsets.
-        let mut tasks = Vec::new();
-        let mut rest = entries.as_mut_slice();
-        for first in (0..points).step_by(BUCKETS_PER_TASK) {
-            let last = (first + BUCKETS_PER_TASK).min(points);
-            let len = (offsets[last] - offsets[first]) as usize;
-            let (head, tail) = rest.split_at_mut(len);
-            tasks.push((first..last, head));
-            rest = tail;
+        FaceBuckets {
+            tets,
+            offsets,
+            entries,
         }
-        tasks.into_par_iter().for_each(|(range, slice)| {
-            let base = offsets[range.start];
-            for p in range {
-                let (s, e) = (offsets[p] - base, offsets[p + 1] - base);
-                slice[s as usize..e as usize].sort_unstable();
-            }
-        });
-        FaceBuckets { offsets, entries }
     }
 
-    /// The neighbour across every face (by face id `4 * tet + local_face`)
-    /// of `tets` tetrahedra, bucket by
-    /// bucket (in parallel): the two faces of a run of equal points are
-    /// each other's other side, so each face is read once, in order. Each
-    /// face id is written by its own run only, so relaxed stores suffice.
-    /// On a run of more than two faces: the non-manifold face with the
-    /// smallest points and its tetrahedra.
-    fn neighbors(&self, tets: usize) -> Result<Vec<AtomicU32>, SharedFace> {
-        let slots: Vec<AtomicU32> = (0..4 * tets)
+    /// Bucket `p` in `keys`, sorted by the faces' other two points.
+    fn sorted_bucket(&self, p: usize, keys: &mut Vec<FaceKey>) {
+        keys.clear();
+        let ids = &self.entries[self.offsets[p] as usize..self.offsets[p + 1] as usize];
+        keys.extend(ids.iter().map(|&id| {
+            let [_, b, c] = sorted_face(&self.tets[id as usize / 4], id as usize % 4);
+            ((b as u64) << 32 | c as u64, id)
+        }));
+        keys.sort_unstable();
+    }
+
+    /// The neighbour across every face (by face id `4 * tet + local_face`),
+    /// bucket by bucket (in parallel): the two faces of a run of equal
+    /// points are each other's other side. Each face id is written by its
+    /// own run only, so relaxed stores suffice. On a run of more than two
+    /// faces: the non-manifold face with the smallest points and its
+    /// tetrahedra.
+    fn neighbors(&self) -> Result<Vec<AtomicU32>, SharedFace> {
+        let slots: Vec<AtomicU32> = (0..4 * self.tets.len())
             .into_par_iter()
             .map(|_| AtomicU32::new(NO_NEIGHBOR))
             .collect();
@@ -105,28 +106,21 @@ impl FaceBuckets {
         let shared_by_more = (0..points)
             .into_par_iter()
             .with_min_len(BUCKETS_PER_TASK)
-            .find_map_any(|p| {
-                let bucket = self.bucket(p);
-                let mut i = 0;
-                while i < bucket.len() {
-                    let key = (bucket[i][0], bucket[i][1]);
-                    let run = bucket[i..].partition_point(|e| (e[0], e[1]) == key);
-                    match run {
-                        1 => {}
-                        2 => {
-                            let (x, y) = (bucket[i][2], bucket[i + 1][2]);
+            .map_init(Vec::new, |keys, p| {
+                self.sorted_bucket(p, keys);
+                for run in keys.chunk_by(|x, y| x.0 == y.0) {
+                    match *run {
+                        [_] => {}
+                        [(_, x), (_, y)] => {
                             slots[x as usize].store(y / 4, Ordering::Relaxed);
                             slots[y as usize].store(x / 4, Ordering::Relaxed);
                         }
-                        _ => {
-                            let tets = bucket[i..i + run].iter().map(|e| e[2] / 4).collect();
-                            return Some(([p as u32, key.0, key.1], tets));
-                        }
+                        _ => return Some(shared_face(p, run)),
                     }
-                    i += run;
                 }
                 None
-            });
+            })
+            .find_map_any(|found| found);
         if let Some(found) = shared_by_more {
             // The same face whatever the thread count: the smallest points.
             return Err(self.first_non_manifold().unwrap_or(found));
@@ -134,26 +128,24 @@ impl FaceBuckets {
         Ok(slots)
     }
 
-    /// The faces whose smallest point is `p`.
-    fn bucket(&self, p: usize) -> &[[u32; 3]] {
-        &self.entries[self.offsets[p] as usize..self.offsets[p + 1] as usize]
-    }
-
     /// The non-manifold face with the smallest points (the same one
     /// whatever the thread count): its points and tetrahedra.
     fn first_non_manifold(&self) -> Option<SharedFace> {
-        (0..self.offsets.len().saturating_sub(1)).find_map(|a| {
-            let bucket = self.bucket(a);
-            bucket.iter().enumerate().find_map(|(i, e)| {
-                let run = bucket[i..].partition_point(|x| (x[0], x[1]) == (e[0], e[1]));
-                let first_of_run = i == 0 || (bucket[i - 1][0], bucket[i - 1][1]) != (e[0], e[1]);
-                (first_of_run && run > 2).then(|| {
-                    let tets = bucket[i..i + run].iter().map(|x| x[2] / 4).collect();
-                    ([a as u32, e[0], e[1]], tets)
-                })
-            })
+        let mut keys = Vec::new();
+        (0..self.offsets.len().saturating_sub(1)).find_map(|p| {
+            self.sorted_bucket(p, &mut keys);
+            keys.chunk_by(|x, y| x.0 == y.0)
+                .find(|run| run.len() > 2)
+                .map(|run| shared_face(p, run))
         })
     }
+}
+
+/// The face of bucket `p` that `run` (more than two faces) shares.
+fn shared_face(p: usize, run: &[FaceKey]) -> SharedFace {
+    let key = run[0].0;
+    let tets = run.iter().map(|&(_, id)| id / 4).collect();
+    ([p as u32, (key >> 32) as u32, key as u32], tets)
 }
 
 /// The faces of `tets` with no neighbour in `neighbors`, outward oriented
@@ -198,7 +190,7 @@ impl Topology {
         }
         let faces = FaceBuckets::new(&mesh.tets);
         let slots = faces
-            .neighbors(n)
+            .neighbors()
             .map_err(|(vertices, tets)| MeshError::NonManifoldFace { vertices, tets })?;
         // The buckets go before the rows are made: not both in memory.
         drop(faces);
