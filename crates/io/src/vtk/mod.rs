@@ -93,7 +93,11 @@ pub fn read_vtu_file(path: &Path) -> Result<VtkRead, VtkError> {
 
 /// [`read_vtu_file`] with options.
 pub fn read_vtu_file_with(path: &Path, opts: &ReadOptions) -> Result<VtkRead, VtkError> {
-    read_vtu_bytes_with(&read_path(path)?, &path.display().to_string(), opts)
+    let name = path.display().to_string();
+    // The file's bytes are freed before the cells become tetrahedra: not
+    // both in memory at the peak.
+    let grid = xml::read::read_raw(&read_path(path)?, &name)?;
+    xml::read::assemble(grid, &name, opts)
 }
 
 /// Reads a serial XML file held in memory; `name` is used in messages.

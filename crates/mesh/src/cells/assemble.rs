@@ -121,9 +121,11 @@ pub fn assemble_at(
         file,
     )?;
 
-    let mut tets = Vec::new();
+    // At least one tetrahedron per cell in a volume mesh: reserved so that
+    // a tetrahedral mesh never reallocates (old and new buffers together).
+    let mut tets = Vec::with_capacity(grid.types.len());
     let mut added = AddedPoints::new(npoints);
-    let mut tet_cells = Vec::new();
+    let mut tet_cells = Vec::with_capacity(grid.types.len());
     let mut counts = CellCounts::default();
     let mut subdivided: BTreeMap<i64, SubdividedCells> = BTreeMap::new();
     let mut lower_dim: BTreeMap<i64, usize> = BTreeMap::new();

@@ -2,6 +2,8 @@
 //! and concatenated into one raw grid; the structured datasets (`.vts`,
 //! `.vtr`, `.vti`) go to `structured.rs`.
 
+use rayon::prelude::*;
+
 use super::data::ArrayDecoder;
 use super::structured as xml_structured;
 use super::tree::{self, XmlArray, XmlPiece};
@@ -219,6 +221,19 @@ fn read_cells(
     let what = "connectivity entries (the last offset)";
     expect_count(d.file, &conn_section, what, previous, connectivity.len())?;
 
+    // The first index out of range, named with its cell (offsets were
+    // checked: every entry belongs to the cell whose end is past it).
+    let bad = connectivity
+        .par_iter()
+        .position_first(|&i| i < 0 || i as u64 >= piece.npoints as u64);
+    if let Some(at) = bad {
+        return Err(VtkError::BadIndex {
+            file: d.file.into(),
+            cell: cells_before + offsets.partition_point(|&end| end as usize <= at),
+            index: connectivity[at],
+            npoints: piece.npoints,
+        });
+    }
     let start = grid.connectivity.len();
     if grid.offsets.is_empty() {
         grid.offsets.push(0);
@@ -226,26 +241,23 @@ fn read_cells(
     // Offsets were checked to lie in 0..=len above.
     grid.offsets
         .extend(offsets.iter().map(|&o| start + o as usize));
-    let mut begin = 0;
-    for (c, &end) in offsets.iter().enumerate() {
-        let end = end as usize;
-        for &index in &connectivity[begin..end] {
-            if index < 0 || index as u64 >= piece.npoints as u64 {
-                return Err(VtkError::BadIndex {
-                    file: d.file.into(),
-                    cell: cells_before + c,
-                    index,
-                    npoints: piece.npoints,
-                });
-            }
-            grid.connectivity.push(index + points_before as i64);
-        }
-        begin = end;
+    // The first piece's arrays are moved, not copied (at 10 M tetrahedra
+    // the connectivity alone is 320 MB).
+    if start == 0 && points_before == 0 {
+        grid.connectivity = connectivity;
+    } else {
+        let shift = points_before as i64;
+        grid.connectivity
+            .extend(connectivity.iter().map(|&index| index + shift));
     }
     if types.contains(&42) {
         read_polyhedra(d, piece, k, &types, points_before, cells_before, grid)?;
     }
-    grid.types.extend(types);
+    if grid.types.is_empty() {
+        grid.types = types;
+    } else {
+        grid.types.extend(types);
+    }
     Ok(())
 }
 
