@@ -83,28 +83,6 @@ impl Scalar {
     }
 }
 
-/// One element of `ty` from exactly `ty.size()` bytes, as f64 (exact for
-/// every float type and for integers up to 2^53).
-pub(crate) fn element_f64(ty: Scalar, b: &[u8], big_endian: bool) -> f64 {
-    match ty {
-        Scalar::F32 => f32::from_bits(u64_of(b, big_endian) as u32) as f64,
-        Scalar::F64 => f64::from_bits(u64_of(b, big_endian)),
-        Scalar::U8 | Scalar::U16 | Scalar::U32 | Scalar::U64 => u64_of(b, big_endian) as f64,
-        _ => i64_of(ty, b, big_endian) as f64,
-    }
-}
-
-/// One integer element; `None` for float types and for unsigned values
-/// beyond i64.
-pub(crate) fn element_i64(ty: Scalar, b: &[u8], big_endian: bool) -> Option<i64> {
-    match ty {
-        Scalar::F32 | Scalar::F64 => None,
-        Scalar::U64 => i64::try_from(u64_of(b, big_endian)).ok(),
-        Scalar::U8 | Scalar::U16 | Scalar::U32 => Some(u64_of(b, big_endian) as i64),
-        _ => Some(i64_of(ty, b, big_endian)),
-    }
-}
-
 /// Elements per rayon task when a whole array is decoded.
 const DECODE_CHUNK: usize = 1 << 16;
 
@@ -140,8 +118,8 @@ fn signed(u: u64, bits: u32) -> i64 {
     ((u << (64 - bits)) as i64) >> (64 - bits)
 }
 
-/// A whole array of `ty` elements (a whole number of them) as f64, equal
-/// to [`element_f64`] of each element.
+/// A whole array of `ty` elements (a whole number of them) as f64 (exact
+/// for every float type and for integers up to 2^53).
 pub(crate) fn decode_f64(ty: Scalar, bytes: &[u8], big_endian: bool) -> Vec<f64> {
     let b = big_endian;
     match ty {
@@ -158,9 +136,8 @@ pub(crate) fn decode_f64(ty: Scalar, bytes: &[u8], big_endian: bool) -> Vec<f64>
     }
 }
 
-/// A whole array of integer elements as i64, equal to [`element_i64`] of
-/// each element; `Err(i)`: element `i` is a float type's or an unsigned
-/// value beyond i64.
+/// A whole array of integer elements as i64; `Err(i)`: element `i` is a
+/// float type's or an unsigned value beyond i64.
 pub(crate) fn decode_i64(ty: Scalar, bytes: &[u8], big_endian: bool) -> Result<Vec<i64>, usize> {
     let b = big_endian;
     Ok(match ty {
@@ -191,13 +168,6 @@ pub(crate) fn u64_of(b: &[u8], big_endian: bool) -> u64 {
     } else {
         b.iter().rev().fold(0, fold)
     }
-}
-
-fn i64_of(ty: Scalar, b: &[u8], big_endian: bool) -> i64 {
-    let u = u64_of(b, big_endian);
-    // Sign-extend from the element's width.
-    let shift = 64 - 8 * ty.size() as u32;
-    ((u << shift) as i64) >> shift
 }
 
 /// Parses one ASCII token as a value of `ty`, returned as f64. Float32
@@ -240,6 +210,38 @@ pub(crate) fn parse_i64(ty: Scalar, token: &str) -> Option<i64> {
 mod tests {
     use super::*;
 
+    // The per-element decoders the whole-array ones are checked against:
+    // bytes folded one at a time, the type matched per element.
+
+    /// One element of `ty` from exactly `ty.size()` bytes, as f64 (exact for
+    /// every float type and for integers up to 2^53).
+    fn element_f64(ty: Scalar, b: &[u8], big_endian: bool) -> f64 {
+        match ty {
+            Scalar::F32 => f32::from_bits(u64_of(b, big_endian) as u32) as f64,
+            Scalar::F64 => f64::from_bits(u64_of(b, big_endian)),
+            Scalar::U8 | Scalar::U16 | Scalar::U32 | Scalar::U64 => u64_of(b, big_endian) as f64,
+            _ => i64_of(ty, b, big_endian) as f64,
+        }
+    }
+
+    /// One integer element; `None` for float types and for unsigned values
+    /// beyond i64.
+    fn element_i64(ty: Scalar, b: &[u8], big_endian: bool) -> Option<i64> {
+        match ty {
+            Scalar::F32 | Scalar::F64 => None,
+            Scalar::U64 => i64::try_from(u64_of(b, big_endian)).ok(),
+            Scalar::U8 | Scalar::U16 | Scalar::U32 => Some(u64_of(b, big_endian) as i64),
+            _ => Some(i64_of(ty, b, big_endian)),
+        }
+    }
+
+    fn i64_of(ty: Scalar, b: &[u8], big_endian: bool) -> i64 {
+        let u = u64_of(b, big_endian);
+        // Sign-extend from the element's width.
+        let shift = 64 - 8 * ty.size() as u32;
+        ((u << shift) as i64) >> shift
+    }
+
     #[test]
     fn decodes_both_byte_orders_and_signs() {
         assert_eq!(element_i64(Scalar::I16, &[0xff, 0xfe], true), Some(-2));
@@ -253,6 +255,20 @@ mod tests {
             -2.25
         );
         assert_eq!(element_f64(Scalar::I8, &[0x80], false), -128.0);
+        // The same values through the whole-array decoders the readers use.
+        assert_eq!(decode_i64(Scalar::I16, &[0xff, 0xfe], true), Ok(vec![-2]));
+        assert_eq!(decode_i64(Scalar::I16, &[0xfe, 0xff], false), Ok(vec![-2]));
+        assert_eq!(
+            decode_i64(Scalar::U16, &[0xff, 0xfe], true),
+            Ok(vec![0xfffe])
+        );
+        assert_eq!(decode_i64(Scalar::U64, &[0xff; 8], true), Err(0));
+        assert_eq!(decode_f64(Scalar::F32, &x.to_be_bytes(), true), vec![1.5]);
+        assert_eq!(
+            decode_f64(Scalar::F64, &(-2.25f64).to_le_bytes(), false),
+            vec![-2.25]
+        );
+        assert_eq!(decode_f64(Scalar::I8, &[0x80], false), vec![-128.0]);
     }
 
     #[test]

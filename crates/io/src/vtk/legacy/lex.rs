@@ -1,7 +1,7 @@
 //! A cursor over a legacy VTK file: whitespace-separated keywords and ASCII
 //! values, with line counting, and raw big-endian blocks for BINARY files.
 
-use crate::vtk::numeric::{element_f64, element_i64, parse_f64, parse_i64, Scalar};
+use crate::vtk::numeric::{decode_f64, decode_i64, parse_f64, parse_i64, Scalar};
 use crate::vtk::VtkError;
 
 pub(super) struct Cursor<'a> {
@@ -181,10 +181,7 @@ impl<'a> Cursor<'a> {
     ) -> Result<Vec<f64>, VtkError> {
         if self.binary {
             let block = self.block(ty, count, section)?;
-            return Ok(block
-                .chunks_exact(ty.size())
-                .map(|b| element_f64(ty, b, true))
-                .collect());
+            return Ok(decode_f64(ty, block, true));
         }
         let mut out = Vec::with_capacity(count.min(self.bytes.len() / 2));
         for i in 0..count {
@@ -214,16 +211,8 @@ impl<'a> Cursor<'a> {
         }
         if self.binary {
             let block = self.block(ty, count, section)?;
-            let mut out = Vec::with_capacity(count);
-            for (i, b) in block.chunks_exact(ty.size()).enumerate() {
-                let Some(v) = element_i64(ty, b, true) else {
-                    return Err(
-                        self.syntax(format!("{section}: value {i} does not fit in 64 bits"))
-                    );
-                };
-                out.push(v);
-            }
-            return Ok(out);
+            return decode_i64(ty, block, true)
+                .map_err(|i| self.syntax(format!("{section}: value {i} does not fit in 64 bits")));
         }
         let mut out = Vec::with_capacity(count.min(self.bytes.len() / 2));
         for i in 0..count {
