@@ -31,14 +31,16 @@ const FAR: f32 = 3.4e38;
 const REENTRY_REL: f32 = 9.5367431640625e-7;
 
 // The current tetrahedron in the frame of the ray: per vertex its
-// projection (x, y across the ray, z along it) and its scalar in w. Four
-// named registers, picked by `vertex` with selects: dynamically indexed
-// local arrays would live in (slow) local memory on many GPUs.
+// projection (x, y across the ray, z along it) and its scalar in w, and the
+// vertex ids. Four named registers, picked by `vertex` with selects:
+// dynamically indexed local arrays would live in (slow) local memory on
+// many GPUs.
 struct Cell {
     v0: vec4<f32>,
     v1: vec4<f32>,
     v2: vec4<f32>,
     v3: vec4<f32>,
+    ids: vec4<u32>,
 }
 
 fn vertex(cell: Cell, i: u32) -> vec4<f32> {
@@ -50,9 +52,32 @@ fn load_vertex(ray: Ray, index: u32) -> vec4<f32> {
     return vec4<f32>(project(ray, q.xyz), q.w);
 }
 
+// A cell entered from the BVH: all four vertices loaded and projected.
 fn load_cell(ray: Ray, tet: u32) -> Cell {
     let v = tet_verts(tet);
-    return Cell(load_vertex(ray, v.x), load_vertex(ray, v.y), load_vertex(ray, v.z), load_vertex(ray, v.w));
+    return Cell(load_vertex(ray, v.x), load_vertex(ray, v.y), load_vertex(ray, v.z), load_vertex(ray, v.w), v);
+}
+
+// The vertex of `cell` with id `id` (v0 when none has it).
+fn carried(cell: Cell, id: u32) -> vec4<f32> {
+    return select(select(select(cell.v0, cell.v1, id == cell.ids.y), cell.v2, id == cell.ids.z), cell.v3, id == cell.ids.w);
+}
+
+// The neighbour `tet`, entered through its face `f_in` from `cell`: the
+// three vertices of that face are the previous cell's exit face, carried
+// over with the same bits (so both sides of the face agree exactly); only
+// the apex opposite it is loaded and projected. One point read per step
+// instead of four.
+fn next_cell(ray: Ray, cell: Cell, tet: u32, f_in: u32) -> Cell {
+    let v = tet_verts(tet);
+    let apex = load_vertex(ray, v[f_in]);
+    return Cell(
+        select(carried(cell, v.x), apex, f_in == 0u),
+        select(carried(cell, v.y), apex, f_in == 1u),
+        select(carried(cell, v.z), apex, f_in == 2u),
+        select(carried(cell, v.w), apex, f_in == 3u),
+        v,
+    );
 }
 
 // Scalar where the ray crosses face f.
@@ -232,7 +257,7 @@ fn cast_ray(px: u32, py: u32) -> Pixel {
             }
             tet = next >> 2u;
             f_in = next & 3u;
-            cell = load_cell(ray, tet);
+            cell = next_cell(ray, cell, tet, f_in);
         }
     }
     let alpha = 1.0 - (trans.x + trans.y + trans.z) / 3.0;

@@ -1,5 +1,6 @@
-//! Renders the Blunt Fin on the GPU and the CPU and compares them.
-//! Usage: gpu_frame [size] [method]
+//! Renders the Blunt Fin (or another mesh) on the GPU, the CPU and the
+//! kernel's CPU twin, compares them and prints the kernel's mesh traffic
+//! counted by the twin. Usage: gpu_frame [size] [method] [mesh field]
 use std::path::Path;
 
 use tetray_boundary_bvh::BuildPreset;
@@ -13,8 +14,12 @@ fn main() -> anyhow::Result<()> {
     let size: u32 = args.get(1).map_or(256, |s| s.parse().unwrap());
     let method: Method = args.get(2).map_or("ppi", |s| s.as_str()).parse()?;
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/plot3d");
-    let loaded = load(&root.join("bluntfinxyz.bin"), &LoadOptions::default())?;
-    let scene = Scene::from_loaded(loaded, "density", BuildPreset::default())?;
+    let path = args
+        .get(3)
+        .map_or(root.join("bluntfinxyz.bin"), |p| p.into());
+    let field = args.get(4).map_or("density", |s| s.as_str());
+    let loaded = load(&path, &LoadOptions::default())?;
+    let scene = Scene::from_loaded(loaded, field, BuildPreset::default())?;
     let (lo, hi) = scene.bounds();
     let mut camera = Camera::reset_to_bounds(lo, hi)?;
     camera.azimuth(30.0)?;
@@ -59,13 +64,20 @@ fn main() -> anyhow::Result<()> {
     )?;
     println!("cpu: {:?}", cpu.stats);
     let t = std::time::Instant::now();
-    let (twin, twin_stats) = tetray_gpu::twin::render(
+    let (twin, twin_stats, traffic) = tetray_gpu::twin::render_traffic(
         &tetray_gpu::SceneData::new(&scene)?,
         &tetray_gpu::IntegratorData::new(&integrator)?,
         &camera,
         &opts,
     )?;
     println!("twin: {twin_stats:?} in {:?}", t.elapsed());
+    let steps = twin_stats[tetray_gpu::layout::STAT_STEPS_LO] as f64;
+    println!(
+        "kernel mesh traffic: {:.1} bytes per step (tetrahedra {:.1}, points {:.1})",
+        (traffic.tet_bytes + traffic.point_bytes) as f64 / steps,
+        traffic.tet_bytes as f64 / steps,
+        traffic.point_bytes as f64 / steps
+    );
     let compare = |name: &str, a: &tetray_raycast::Image, b: &tetray_raycast::Image| {
         let mut worst = 0.0f32;
         let mut differing = 0;

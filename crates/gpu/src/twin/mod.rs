@@ -45,6 +45,17 @@ pub fn render(
     camera: &Camera,
     opts: &GpuRenderOptions,
 ) -> Result<(Image, [u64; STAT_COUNT]), GpuError> {
+    render_traffic(scene, integrator, camera, opts).map(|(image, stats, _)| (image, stats))
+}
+
+/// [`render`], and the bytes the kernel reads from the mesh's arrays for
+/// the frame.
+pub fn render_traffic(
+    scene: &SceneData,
+    integrator: &IntegratorData,
+    camera: &Camera,
+    opts: &GpuRenderOptions,
+) -> Result<(Image, [u64; STAT_COUNT], Traffic), GpuError> {
     let params = frame_params(&scene.layout(), integrator, camera, opts)?;
     let input = Inputs {
         params: &params,
@@ -56,25 +67,28 @@ pub fn render(
     };
     let width = opts.width as usize;
     let mut rgba = vec![[0.0f32; 4]; width * opts.height as usize];
-    let totals = rgba
+    let (stats, traffic) = rgba
         .par_chunks_mut(width)
         .enumerate()
         .map(|(py, row)| {
             let mut stats = [0u64; STAT_COUNT];
+            let mut traffic = Traffic::default();
             for (px, out) in row.iter_mut().enumerate() {
                 let (color, c) = cast_ray(&input, px as u32, py as u32);
                 *out = color.to_array();
                 for (total, value) in stats.iter_mut().zip(c.as_stats()) {
                     *total += value;
                 }
+                traffic = traffic.add(c.traffic);
             }
-            stats
+            (stats, traffic)
         })
         .reduce(
-            || [0u64; STAT_COUNT],
-            |a, b| std::array::from_fn(|i| a[i] + b[i]),
+            || ([0u64; STAT_COUNT], Traffic::default()),
+            |a, b| (std::array::from_fn(|i| a.0[i] + b.0[i]), a.1.add(b.1)),
         );
-    Ok((Image::from_pixels(opts.width, opts.height, rgba)?, totals))
+    let image = Image::from_pixels(opts.width, opts.height, rgba)?;
+    Ok((image, stats, traffic))
 }
 
 /// One pixel of a frame, as the kernel casts it: premultiplied RGBA and
@@ -124,13 +138,18 @@ const NO_EXIT: u32 = 0xffff;
 struct Cell {
     p: [Vec3; 4],
     s: Vec4,
+    ids: [u32; 4],
 }
 
-fn load_cell(input: &Inputs, ray: &Ray, tet: u32) -> Cell {
+/// A cell entered from the BVH: all four vertices loaded and projected.
+fn load_cell(input: &Inputs, ray: &Ray, tet: u32, traffic: &mut Traffic) -> Cell {
     let v = input.tets[2 * tet as usize];
+    traffic.tet_bytes += RECORD_BYTES;
+    traffic.point_bytes += 4 * RECORD_BYTES;
     let mut cell = Cell {
         p: [Vec3::ZERO; 4],
         s: Vec4::ZERO,
+        ids: v,
     };
     for (i, &vertex) in v.iter().enumerate() {
         let q = input.point(vertex);
@@ -138,6 +157,40 @@ fn load_cell(input: &Inputs, ray: &Ray, tet: u32) -> Cell {
         cell.s[i] = q.w;
     }
     cell
+}
+
+/// The neighbour `tet` entered through its face `f_in` from `cell`: the
+/// face's three vertices carried over from `cell` (the kernel's `carried`:
+/// the last vertex with a matching id, vertex 0 when none), the apex loaded
+/// and projected.
+fn next_cell(
+    input: &Inputs,
+    ray: &Ray,
+    cell: &Cell,
+    tet: u32,
+    f_in: usize,
+    traffic: &mut Traffic,
+) -> Cell {
+    let v = input.tets[2 * tet as usize];
+    let q = input.point(v[f_in]);
+    traffic.tet_bytes += RECORD_BYTES;
+    traffic.point_bytes += RECORD_BYTES;
+    let mut next = Cell {
+        p: [Vec3::ZERO; 4],
+        s: Vec4::ZERO,
+        ids: v,
+    };
+    for (i, &vertex) in v.iter().enumerate() {
+        let (p, s) = if i == f_in {
+            (project(ray, q.truncate()), q.w)
+        } else {
+            let k = (1..4).rev().find(|&k| cell.ids[k] == vertex).unwrap_or(0);
+            (cell.p[k], cell.s[k])
+        };
+        next.p[i] = p;
+        next.s[i] = s;
+    }
+    next
 }
 
 fn face_scalar(cell: &Cell, f: usize) -> f32 {
@@ -185,7 +238,30 @@ struct Counters {
     entries: u64,
     bound_hit: u64,
     failure: u64,
+    traffic: Traffic,
 }
+
+/// Bytes the kernel reads from the mesh's arrays (the tetrahedra's vertex
+/// and neighbour records, the points), counted at each of the twin's loads,
+/// which are the kernel's one for one. The BVH's and the integrator's small
+/// tables are not counted.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Traffic {
+    pub tet_bytes: u64,
+    pub point_bytes: u64,
+}
+
+impl Traffic {
+    fn add(self, other: Traffic) -> Traffic {
+        Traffic {
+            tet_bytes: self.tet_bytes + other.tet_bytes,
+            point_bytes: self.point_bytes + other.point_bytes,
+        }
+    }
+}
+
+/// One record of the tetrahedron array or the point array.
+const RECORD_BYTES: u64 = 16;
 
 impl Counters {
     /// In the order of the kernel's counter array (wide counters in `LO`).
@@ -254,7 +330,7 @@ fn cast_ray(input: &Inputs, px: u32, py: u32) -> (Vec4, Counters) {
         let code = face_entry(input, entry.face);
         let mut tet = code >> 2;
         let mut f_in = (code & 3) as usize;
-        let mut cell = load_cell(input, &ray, tet);
+        let mut cell = load_cell(input, &ray, tet, &mut counters.traffic);
         let mut t_in = entry.t.max(t_cursor);
         let mut s_in = face_scalar(&cell, f_in);
         let mut sample_in = sample_at(input, s_in);
@@ -294,6 +370,7 @@ fn cast_ray(input: &Inputs, px: u32, py: u32) -> (Vec4, Counters) {
             s_in = s_out;
             sample_in = sample_out;
             let next = input.tets[2 * tet as usize + 1][f_out];
+            counters.traffic.tet_bytes += RECORD_BYTES;
             if next >= tetray_raycast::FINAL_EXIT {
                 done = next == tetray_raycast::FINAL_EXIT;
                 t_cursor = t_out;
@@ -301,7 +378,7 @@ fn cast_ray(input: &Inputs, px: u32, py: u32) -> (Vec4, Counters) {
             }
             tet = next >> 2;
             f_in = (next & 3) as usize;
-            cell = load_cell(input, &ray, tet);
+            cell = next_cell(input, &ray, &cell, tet, f_in, &mut counters.traffic);
         }
     }
     let alpha = 1.0 - (trans.x + trans.y + trans.z) / 3.0;
