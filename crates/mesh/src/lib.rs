@@ -30,6 +30,7 @@ mod info;
 mod loaded;
 mod scale;
 mod seams;
+mod search;
 mod topology;
 mod validate;
 
@@ -46,6 +47,7 @@ pub use loaded::{finish, prepare, ElementBlock, LoadReport, LoadedMesh, MeshRead
 pub use scale::{
     default_field, mean_chord, mean_tet_chord, paraview_unit_distance, tet_chord_sum, value_range,
 };
+pub use search::{first_index, first_position};
 pub use topology::{boundary_faces_of, MAX_TETS};
 pub use validate::{validate, validate_with_topology, ValidationReport};
 

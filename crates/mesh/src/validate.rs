@@ -18,7 +18,10 @@ use rayon::prelude::*;
 
 use crate::conform::nonconformity;
 use crate::seams::{coincident_boundary_faces, duplicate_points};
-use crate::{tet_shape, BoundaryFace, MeshError, TetMesh, Topology, FACE_VERTICES};
+use crate::{
+    first_index, first_position, tet_shape, BoundaryFace, MeshError, TetMesh, Topology,
+    FACE_VERTICES,
+};
 
 /// What validation found that does not stop rendering.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -124,12 +127,12 @@ fn check_sizes(mesh: &TetMesh) -> Result<(), MeshError> {
 
 fn check_indices(mesh: &TetMesh) -> Result<(), MeshError> {
     let npoints = mesh.points.len();
-    let bad = mesh
-        .tets
-        .par_iter()
-        .enumerate()
-        .find_first(|(_, tet)| tet.iter().any(|&i| i as usize >= npoints) || has_repeat(tet));
-    let Some((t, tet)) = bad else { return Ok(()) };
+    let bad = first_position(&mesh.tets, |tet| {
+        tet.iter().any(|&i| i as usize >= npoints) || has_repeat(tet)
+    });
+    let Some((t, tet)) = bad.map(|t| (t, &mesh.tets[t])) else {
+        return Ok(());
+    };
     if let Some(corner) = tet.iter().position(|&i| i as usize >= npoints) {
         return Err(MeshError::DanglingIndex {
             tet: t,
@@ -159,7 +162,7 @@ fn has_repeat(tet: &[u32; 4]) -> bool {
 }
 
 fn check_finite(mesh: &TetMesh) -> Result<(), MeshError> {
-    let bad = mesh.points.par_iter().position_first(|p| !p.is_finite());
+    let bad = first_position(&mesh.points, |p| !p.is_finite());
     if let Some(point) = bad {
         let p = mesh.points[point];
         let axis = (0..3).find(|&a| !p[a].is_finite()).unwrap_or(0);
@@ -170,7 +173,7 @@ fn check_finite(mesh: &TetMesh) -> Result<(), MeshError> {
         });
     }
     for field in &mesh.fields {
-        if let Some(point) = field.values.par_iter().position_first(|v| !v.is_finite()) {
+        if let Some(point) = first_position(&field.values, |v| !v.is_finite()) {
             return Err(MeshError::NonFiniteScalar {
                 field: field.name.clone(),
                 point,
@@ -183,10 +186,11 @@ fn check_finite(mesh: &TetMesh) -> Result<(), MeshError> {
 
 /// Degenerate before inverted: a flat tetrahedron's sign means nothing.
 fn check_shapes(mesh: &TetMesh) -> Result<(), MeshError> {
-    let bad = mesh.tets.par_iter().enumerate().find_first(|(t, _)| {
-        let shape = tet_shape(mesh.tet_points(*t));
+    let bad = first_index(mesh.tets.len(), |t| {
+        let shape = tet_shape(mesh.tet_points(t));
         shape.is_degenerate() || shape.volume6 < 0.0
-    });
+    })
+    .map(|t| (t, &mesh.tets[t]));
     let Some((t, &vertices)) = bad else {
         return Ok(());
     };

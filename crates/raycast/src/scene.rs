@@ -4,7 +4,7 @@
 use glam::Vec3;
 use rayon::prelude::*;
 use tetray_boundary_bvh::{BoundaryBvh, BuildPreset, BvhError};
-use tetray_mesh::{LoadedMesh, TetMesh, Topology, FACE_VERTICES, NO_NEIGHBOR};
+use tetray_mesh::{first_position, LoadedMesh, TetMesh, Topology, FACE_VERTICES, NO_NEIGHBOR};
 
 use crate::order::{morton_reorder, Reorder};
 
@@ -138,7 +138,7 @@ impl Scene {
                 mesh: mesh.tets.len(),
             });
         }
-        if let Some(point) = mesh.points.par_iter().position_first(|p| !p.is_finite()) {
+        if let Some(point) = first_position(&mesh.points, |p| !p.is_finite()) {
             return Err(SceneError::NonFinitePoint {
                 point,
                 coords: mesh.points[point].to_array(),
@@ -146,11 +146,7 @@ impl Scene {
         }
         let points = mesh.points.len();
         let out_of_range = |verts: &[u32; 4]| verts.iter().copied().find(|&v| v as usize >= points);
-        if let Some(tet) = mesh
-            .tets
-            .par_iter()
-            .position_first(|v| out_of_range(v).is_some())
-        {
+        if let Some(tet) = first_position(&mesh.tets, |v| out_of_range(v).is_some()) {
             return Err(SceneError::PointOutOfRange {
                 tet,
                 point: out_of_range(&mesh.tets[tet]).unwrap_or_default(),
@@ -308,11 +304,7 @@ fn check_neighbors_in_range(topology: &Topology) -> Result<(), SceneError> {
         row.iter()
             .position(|&nb| nb != NO_NEIGHBOR && nb as usize >= n)
     };
-    match topology
-        .neighbors
-        .par_iter()
-        .position_first(|row| bad(row).is_some())
-    {
+    match first_position(&topology.neighbors, |row| bad(row).is_some()) {
         None => Ok(()),
         Some(tet) => {
             let face = bad(&topology.neighbors[tet]).unwrap_or_default();

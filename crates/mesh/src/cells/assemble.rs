@@ -6,15 +6,17 @@
 use std::collections::BTreeMap;
 
 use glam::{DVec3, Vec3};
+use rayon::prelude::*;
 
 use super::added_points::AddedPoints;
+use super::cell_table::CellTable;
 use super::cell_types::{classify, type_name, CellKind};
 use super::poly_grid::{checked_faces, separate_inline_faces};
 use super::polyhedron::{prism_faces, split_polyhedron, PolyhedronFaces};
 use super::split::{hexahedron_cones, split_cell};
 use super::split_quadratic::{subdivide, Subdivision};
 use super::{CellCounts, CellError, PieceCounts, ReadOptions, SubdividedCells, VtkRead};
-use crate::{ScalarField, TetMesh};
+use crate::{first_index, first_position, ScalarField, TetMesh};
 
 /// A named point or cell array as read, `components` values per tuple.
 #[derive(Debug, Clone)]
@@ -120,6 +122,8 @@ pub fn assemble_at(
         npoints,
         file,
     )?;
+    // The cells hold the indices now (as u32).
+    grid.connectivity = Vec::new();
 
     // At least one tetrahedron per cell in a volume mesh: reserved so that
     // a tetrahedral mesh never reallocates (old and new buffers together).
@@ -132,7 +136,25 @@ pub fn assemble_at(
     let mut dropped = 0;
     let mut resplit = 0;
     let mut volume_cell = vec![false; cells.len()];
-    for (c, &type_id) in grid.types.iter().enumerate() {
+    // A grid of tetrahedra alone (the common large mesh) is taken over in
+    // parallel: each cell is one tetrahedron, as the loop below makes it.
+    let only_tetra = first_position(&grid.types, |&t| classify(t) != CellKind::Tetra).is_none()
+        && first_index(cells.len(), |c| cells.cell(c).len() != 4).is_none();
+    if only_tetra {
+        tets = cells
+            .ids
+            .par_chunks_exact(4)
+            .map(|v| [v[0], v[1], v[2], v[3]])
+            .collect();
+        tet_cells = (0..cells.len())
+            .into_par_iter()
+            .map(|c| grid.cell_number(c))
+            .collect();
+        volume_cell.fill(true);
+        counts.tetra = cells.len();
+    }
+    let serial_cells = if only_tetra { 0 } else { grid.types.len() };
+    for (c, &type_id) in grid.types.iter().enumerate().take(serial_cells) {
         let ids = cells.cell(c);
         let kind = classify(type_id);
         match kind {
@@ -480,106 +502,4 @@ pub fn to_f32(values: &[f64], section: &str, file: &str) -> Result<Vec<f32>, Cel
         out.push(x);
     }
     Ok(out)
-}
-
-/// Cells as validated u32 point-index slices.
-struct CellTable<'a> {
-    offsets: &'a [usize],
-    ids: Vec<u32>,
-}
-
-impl<'a> CellTable<'a> {
-    fn new(
-        offsets: &'a [usize],
-        connectivity: &[i64],
-        ncells: usize,
-        npoints: usize,
-        file: &str,
-    ) -> Result<Self, CellError> {
-        let offsets: &[usize] = if offsets.is_empty() { &[0] } else { offsets };
-        let invalid = |message: String| CellError::Invalid {
-            file: file.into(),
-            section: "cells".into(),
-            message,
-        };
-        if offsets.len() != ncells + 1 || offsets[0] != 0 {
-            return Err(invalid(format!(
-                "{} cell offsets for {ncells} cell types",
-                offsets.len().saturating_sub(1)
-            )));
-        }
-        let mut ids = Vec::with_capacity(connectivity.len());
-        for c in 0..ncells {
-            let (start, end) = (offsets[c], offsets[c + 1]);
-            if end < start || end > connectivity.len() {
-                return Err(invalid(format!(
-                    "cell {c} spans connectivity entries {start}..{end} of {}",
-                    connectivity.len()
-                )));
-            }
-            for &index in &connectivity[start..end] {
-                match u32::try_from(index) {
-                    Ok(i) if (i as usize) < npoints => ids.push(i),
-                    _ => {
-                        return Err(CellError::BadIndex {
-                            file: file.into(),
-                            cell: c,
-                            index,
-                            npoints,
-                        })
-                    }
-                }
-            }
-        }
-        if offsets[ncells] != connectivity.len() {
-            return Err(invalid(format!(
-                "the cells use {} connectivity entries but there are {}",
-                offsets[ncells],
-                connectivity.len()
-            )));
-        }
-        Ok(CellTable { offsets, ids })
-    }
-
-    fn len(&self) -> usize {
-        self.offsets.len() - 1
-    }
-
-    fn cell(&self, c: usize) -> &[u32] {
-        &self.ids[self.offsets[c]..self.offsets[c + 1]]
-    }
-
-    /// Distinct points of cell `c` (collapsed cells repeat some).
-    fn distinct(&self, c: usize) -> impl Iterator<Item = u32> + '_ {
-        let ids = self.cell(c);
-        ids.iter()
-            .enumerate()
-            .filter(move |&(i, id)| !ids[..i].contains(id))
-            .map(|(_, &id)| id)
-    }
-
-    /// How many volume cells use each point.
-    fn point_users(&self, volume_cell: &[bool], npoints: usize) -> Vec<u32> {
-        let mut users = vec![0u32; npoints];
-        for c in (0..self.len()).filter(|&c| volume_cell[c]) {
-            for p in self.distinct(c) {
-                users[p as usize] += 1;
-            }
-        }
-        users
-    }
-
-    /// Mean over the volume cells using each point; 0 where none does.
-    fn average_to_points(&self, per_cell: &[f64], volume_cell: &[bool], users: &[u32]) -> Vec<f64> {
-        let mut sum = vec![0.0f64; users.len()];
-        for c in (0..self.len()).filter(|&c| volume_cell[c]) {
-            for p in self.distinct(c) {
-                sum[p as usize] += per_cell[c];
-            }
-        }
-        sum.iter()
-            .zip(users)
-            .map(|(&s, &n)| if n == 0 { 0.0 } else { s / n as f64 })
-            .collect()
-    }
 }

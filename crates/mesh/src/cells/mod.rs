@@ -35,6 +35,7 @@
 
 mod added_points;
 mod assemble;
+mod cell_table;
 mod cell_types;
 mod error;
 mod pieces;

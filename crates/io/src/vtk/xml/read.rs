@@ -2,8 +2,6 @@
 //! and concatenated into one raw grid; the structured datasets (`.vts`,
 //! `.vtr`, `.vti`) go to `structured.rs`.
 
-use rayon::prelude::*;
-
 use super::data::ArrayDecoder;
 use super::structured as xml_structured;
 use super::tree::{self, XmlArray, XmlPiece};
@@ -223,9 +221,9 @@ fn read_cells(
 
     // The first index out of range, named with its cell (offsets were
     // checked: every entry belongs to the cell whose end is past it).
-    let bad = connectivity
-        .par_iter()
-        .position_first(|&i| i < 0 || i as u64 >= piece.npoints as u64);
+    let bad = tetray_mesh::first_position(&connectivity, |&i| {
+        i < 0 || i as u64 >= piece.npoints as u64
+    });
     if let Some(at) = bad {
         return Err(VtkError::BadIndex {
             file: d.file.into(),
