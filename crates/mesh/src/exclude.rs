@@ -20,7 +20,7 @@
 use rayon::prelude::*;
 
 use crate::validate::face_side_conflicts;
-use crate::{tet_shape, MeshError, TetMesh, Topology};
+use crate::{tet_shape, MeshError, TetMesh, Topology, MAX_TETS};
 
 /// What was left out of the walk, and how much of the mesh that is.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -105,6 +105,13 @@ pub(crate) fn exclude_bad_cells(
     tet_cells: &[u32],
 ) -> Result<(Topology, ExcludedCells, usize), MeshError> {
     let n = mesh.tets.len();
+    if n > MAX_TETS {
+        return Err(MeshError::TooLarge {
+            what: "tetrahedra",
+            count: n,
+            max: MAX_TETS,
+        });
+    }
     let cell_of = |t: usize| {
         if tet_cells.len() == n {
             tet_cells[t]
@@ -143,7 +150,12 @@ pub(crate) fn exclude_bad_cells(
     let mut reoriented;
     let topology = loop {
         // Current tetrahedron -> its index as given.
-        let original: Vec<usize> = (0..n).filter(|&t| keep(t, &reason)).collect();
+        // (u32: the mesh's tetrahedra are numbered with u32, MAX_TETS.)
+        let original: Vec<u32> = (0..n)
+            .into_par_iter()
+            .filter(|&t| keep(t, &reason))
+            .map(|t| t as u32)
+            .collect();
         if original.is_empty() {
             return Err(MeshError::NothingLeft {
                 tets: n,
@@ -151,13 +163,14 @@ pub(crate) fn exclude_bad_cells(
                 cells: reason.iter().filter(|r| r.is_some()).count(),
             });
         }
-        mesh.tets = original.iter().map(|&t| given[t]).collect();
+        mesh.tets = original.par_iter().map(|&t| given[t as usize]).collect();
         reoriented = mesh.orient();
         let topology = match Topology::build(mesh) {
             Ok(topology) => topology,
             Err(MeshError::NonManifoldFace { tets, .. }) => {
                 for t in tets {
-                    reason[cell_of(original[t as usize]) as usize] = Some(Reason::NonManifold);
+                    reason[cell_of(original[t as usize] as usize) as usize] =
+                        Some(Reason::NonManifold);
                 }
                 continue;
             }
@@ -169,7 +182,7 @@ pub(crate) fn exclude_bad_cells(
         }
         for (a, b, _) in conflicts {
             for t in [a, b] {
-                reason[cell_of(original[t as usize]) as usize] = Some(Reason::Overlapping);
+                reason[cell_of(original[t as usize] as usize) as usize] = Some(Reason::Overlapping);
             }
         }
     };
