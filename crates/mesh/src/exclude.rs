@@ -19,8 +19,9 @@
 
 use rayon::prelude::*;
 
+use crate::topology::check_tet_count;
 use crate::validate::face_side_conflicts;
-use crate::{tet_shape, MeshError, TetMesh, Topology, MAX_TETS};
+use crate::{tet_shape, MeshError, TetMesh, Topology};
 
 /// What was left out of the walk, and how much of the mesh that is.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -105,13 +106,8 @@ pub(crate) fn exclude_bad_cells(
     tet_cells: &[u32],
 ) -> Result<(Topology, ExcludedCells, usize), MeshError> {
     let n = mesh.tets.len();
-    if n > MAX_TETS {
-        return Err(MeshError::TooLarge {
-            what: "tetrahedra",
-            count: n,
-            max: MAX_TETS,
-        });
-    }
+    // Kept tetrahedra are listed by u32 index below.
+    check_tet_count(n)?;
     let cell_of = |t: usize| {
         if tet_cells.len() == n {
             tet_cells[t]
@@ -150,7 +146,6 @@ pub(crate) fn exclude_bad_cells(
     let mut reoriented;
     let topology = loop {
         // Current tetrahedron -> its index as given.
-        // (u32: the mesh's tetrahedra are numbered with u32, MAX_TETS.)
         let original: Vec<u32> = (0..n)
             .into_par_iter()
             .filter(|&t| keep(t, &reason))

@@ -148,6 +148,19 @@ fn shared_face(p: usize, run: &[FaceKey]) -> SharedFace {
     ([p as u32, (key >> 32) as u32, key as u32], tets)
 }
 
+/// [`MeshError::TooLarge`] beyond [`MAX_TETS`] tetrahedra (face ids
+/// `4 * tet + local_face` are u32).
+pub(crate) fn check_tet_count(n: usize) -> Result<(), MeshError> {
+    if n > MAX_TETS {
+        return Err(MeshError::TooLarge {
+            what: "tetrahedra",
+            count: n,
+            max: MAX_TETS,
+        });
+    }
+    Ok(())
+}
+
 /// The faces of `tets` with no neighbour in `neighbors`, outward oriented
 /// when the tetrahedra are positively oriented, listed by tetrahedron, then
 /// local face.
@@ -181,13 +194,7 @@ impl Topology {
     /// tetrahedra.
     pub fn build(mesh: &TetMesh) -> Result<Topology, MeshError> {
         let n = mesh.tets.len();
-        if n > MAX_TETS {
-            return Err(MeshError::TooLarge {
-                what: "tetrahedra",
-                count: n,
-                max: MAX_TETS,
-            });
-        }
+        check_tet_count(n)?;
         let faces = FaceBuckets::new(&mesh.tets);
         let slots = faces
             .neighbors()

@@ -130,9 +130,8 @@ fn check_indices(mesh: &TetMesh) -> Result<(), MeshError> {
     let bad = first_position(&mesh.tets, |tet| {
         tet.iter().any(|&i| i as usize >= npoints) || has_repeat(tet)
     });
-    let Some((t, tet)) = bad.map(|t| (t, &mesh.tets[t])) else {
-        return Ok(());
-    };
+    let Some(t) = bad else { return Ok(()) };
+    let tet = &mesh.tets[t];
     if let Some(corner) = tet.iter().position(|&i| i as usize >= npoints) {
         return Err(MeshError::DanglingIndex {
             tet: t,
@@ -189,11 +188,9 @@ fn check_shapes(mesh: &TetMesh) -> Result<(), MeshError> {
     let bad = first_index(mesh.tets.len(), |t| {
         let shape = tet_shape(mesh.tet_points(t));
         shape.is_degenerate() || shape.volume6 < 0.0
-    })
-    .map(|t| (t, &mesh.tets[t]));
-    let Some((t, &vertices)) = bad else {
-        return Ok(());
-    };
+    });
+    let Some(t) = bad else { return Ok(()) };
+    let vertices = mesh.tets[t];
     let shape = tet_shape(mesh.tet_points(t));
     if shape.is_degenerate() {
         return Err(MeshError::DegenerateTet {

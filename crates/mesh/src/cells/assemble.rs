@@ -125,34 +125,40 @@ pub fn assemble_at(
     // The cells hold the indices now (as u32).
     grid.connectivity = Vec::new();
 
-    // At least one tetrahedron per cell in a volume mesh: reserved so that
-    // a tetrahedral mesh never reallocates (old and new buffers together).
-    let mut tets = Vec::with_capacity(grid.types.len());
-    let mut added = AddedPoints::new(npoints);
-    let mut tet_cells = Vec::with_capacity(grid.types.len());
-    let mut counts = CellCounts::default();
-    let mut subdivided: BTreeMap<i64, SubdividedCells> = BTreeMap::new();
-    let mut lower_dim: BTreeMap<i64, usize> = BTreeMap::new();
-    let mut dropped = 0;
-    let mut resplit = 0;
-    let mut volume_cell = vec![false; cells.len()];
     // A grid of tetrahedra alone (the common large mesh) is taken over in
     // parallel: each cell is one tetrahedron, as the loop below makes it.
     let only_tetra = first_position(&grid.types, |&t| classify(t) != CellKind::Tetra).is_none()
         && first_index(cells.len(), |c| cells.cell(c).len() != 4).is_none();
-    if only_tetra {
-        tets = cells
+    let (mut tets, mut tet_cells) = if only_tetra {
+        let tets = cells
             .ids
             .par_chunks_exact(4)
             .map(|v| [v[0], v[1], v[2], v[3]])
             .collect();
-        tet_cells = (0..cells.len())
+        let tet_cells = (0..cells.len())
             .into_par_iter()
             .map(|c| grid.cell_number(c))
             .collect();
-        volume_cell.fill(true);
-        counts.tetra = cells.len();
-    }
+        (tets, tet_cells)
+    } else {
+        // At least one tetrahedron per cell in a volume mesh: reserved so
+        // that a tetrahedral mesh never reallocates (old and new buffers
+        // together).
+        (
+            Vec::with_capacity(grid.types.len()),
+            Vec::with_capacity(grid.types.len()),
+        )
+    };
+    let mut added = AddedPoints::new(npoints);
+    let mut counts = CellCounts {
+        tetra: if only_tetra { cells.len() } else { 0 },
+        ..CellCounts::default()
+    };
+    let mut subdivided: BTreeMap<i64, SubdividedCells> = BTreeMap::new();
+    let mut lower_dim: BTreeMap<i64, usize> = BTreeMap::new();
+    let mut dropped = 0;
+    let mut resplit = 0;
+    let mut volume_cell = vec![only_tetra; cells.len()];
     let serial_cells = if only_tetra { 0 } else { grid.types.len() };
     for (c, &type_id) in grid.types.iter().enumerate().take(serial_cells) {
         let ids = cells.cell(c);
