@@ -23,28 +23,77 @@ impl BoundaryBvh {
             let first = &mut first_slot[face as usize];
             *first = (*first).min(slot);
         }
+        let extremes = self.extreme_points();
         first_slot
             .par_iter()
             .map_init(Vec::new, |stack, &slot| {
                 let [a, b, c] = self.prim_tris[slot].map(|p| p.as_dvec3());
                 let normal = (b - a).cross(c - a);
-                normal.length() > 0.0 && self.all_behind(a, normal, stack)
+                let normal_length = normal.length();
+                normal_length > 0.0
+                    && !extremes
+                        .iter()
+                        .any(|&q| in_front(q, a, normal, normal_length))
+                    && self.all_behind(a, normal, stack)
             })
             .collect()
     }
 
+    /// The boundary points farthest along each of the 26 directions of
+    /// `{-1, 0, 1}^3 \ 0`: most faces off the convex hull have one of them
+    /// in front, which settles them without a traversal (the answer is the
+    /// traversal's: the same test on a point it would reach).
+    fn extreme_points(&self) -> Vec<DVec3> {
+        let directions: Vec<DVec3> = (0..27)
+            .filter(|&i| i != 13)
+            .map(|i| {
+                DVec3::new(
+                    (i % 3) as f64 - 1.0,
+                    (i / 3 % 3) as f64 - 1.0,
+                    (i / 9) as f64 - 1.0,
+                )
+            })
+            .collect();
+        let none = || vec![(f64::NEG_INFINITY, DVec3::ZERO); directions.len()];
+        let best = self
+            .prim_tris
+            .par_chunks(4096)
+            .fold(none, |mut best, tris| {
+                for q in tris.iter().flatten().map(|q| q.as_dvec3()) {
+                    for (slot, d) in best.iter_mut().zip(&directions) {
+                        let along = q.dot(*d);
+                        if along > slot.0 {
+                            *slot = (along, q);
+                        }
+                    }
+                }
+                best
+            })
+            .reduce(none, |a, b| {
+                a.into_iter()
+                    .zip(b)
+                    .map(|(a, b)| if b.0 > a.0 { b } else { a })
+                    .collect()
+            });
+        best.into_iter()
+            .filter(|(along, _)| along.is_finite())
+            .map(|(_, q)| q)
+            .collect()
+    }
+
     /// Whether every boundary point `q` has `(q - point) . normal <= 0`
-    /// (up to [`COPLANAR_REL`]), pruning subtrees whose boxes lie behind
-    /// (`stack`: the traversal's, reused between calls).
+    /// (up to [`COPLANAR_REL`]), pruning subtrees whose boxes lie behind and
+    /// descending first into the child reaching farthest in front, where a
+    /// point in front is likeliest (`stack`: the traversal's, reused
+    /// between calls).
     fn all_behind(&self, point: DVec3, normal: DVec3, stack: &mut Vec<u32>) -> bool {
         let nodes = &self.bvh.nodes;
         let abs_normal = normal.abs();
         let normal_length = normal.length();
-        stack.clear();
-        stack.push(0);
-        while let Some(index) = stack.pop() {
-            let node = &nodes[index as usize];
-            let aabb = node.aabb();
+        // How far the box of node `index` reaches in front of the plane, or
+        // `None` when it lies wholly behind.
+        let reach = |index: u32| {
+            let aabb = nodes[index as usize].aabb();
             let (lo, hi) = (aabb.min.as_dvec3(), aabb.max.as_dvec3());
             let centre = 0.5 * (lo + hi);
             let half = 0.5 * (hi - lo);
@@ -52,30 +101,54 @@ impl BoundaryBvh {
             let reach = (centre - point).dot(normal) + half.dot(abs_normal);
             // The slack is never negative: a box wholly behind needs no
             // square root.
-            if reach <= 0.0
+            let behind = reach <= 0.0
                 || reach
-                    <= COPLANAR_REL * normal_length * ((centre - point).length() + half.length())
-            {
-                continue;
-            }
+                    <= COPLANAR_REL * normal_length * ((centre - point).length() + half.length());
+            (!behind).then_some(reach)
+        };
+        stack.clear();
+        if reach(0).is_some() {
+            stack.push(0);
+        }
+        while let Some(index) = stack.pop() {
+            let node = &nodes[index as usize];
             if node.is_leaf() {
                 let first = node.first_index as usize;
                 for tri in &self.prim_tris[first..first + node.prim_count as usize] {
-                    for q in tri.map(|q| q.as_dvec3()) {
-                        let d = q - point;
-                        let ahead = d.dot(normal);
-                        if ahead > 0.0 && ahead > COPLANAR_REL * normal_length * d.length() {
-                            return false;
-                        }
+                    if tri
+                        .iter()
+                        .any(|q| in_front(q.as_dvec3(), point, normal, normal_length))
+                    {
+                        return false;
                     }
                 }
             } else {
-                stack.push(node.first_index);
-                stack.push(node.first_index + 1);
+                let (left, right) = (node.first_index, node.first_index + 1);
+                match (reach(left), reach(right)) {
+                    (Some(l), Some(r)) => {
+                        // The farther-reaching child is popped first.
+                        let (near, far) = if l > r { (right, left) } else { (left, right) };
+                        stack.push(near);
+                        stack.push(far);
+                    }
+                    (Some(_), None) => stack.push(left),
+                    (None, Some(_)) => stack.push(right),
+                    (None, None) => {}
+                }
             }
         }
         true
     }
+}
+
+/// Whether `q` lies in front of the plane through `point` with `normal`
+/// (of length `normal_length`) by more than [`COPLANAR_REL`] of its
+/// distance.
+#[inline]
+fn in_front(q: DVec3, point: DVec3, normal: DVec3, normal_length: f64) -> bool {
+    let d = q - point;
+    let ahead = d.dot(normal);
+    ahead > 0.0 && ahead > COPLANAR_REL * normal_length * d.length()
 }
 
 #[cfg(test)]

@@ -9,6 +9,8 @@
 //! numbering ([`Reorder::tet_from`], [`Reorder::point_from`]).
 
 use rayon::prelude::*;
+use rdst::RadixSort;
+use std::sync::atomic::{AtomicU32, Ordering};
 use tetray_mesh::{boundary_faces_of, TetMesh, Topology, NO_NEIGHBOR};
 
 /// Bits per axis of the Morton code (3 x 21 = 63 bits).
@@ -49,6 +51,27 @@ fn sort_key(code: u64, index: usize) -> u64 {
     (code >> (3 * BITS - 32)) << 32 | index as u64
 }
 
+/// Sorts keys made by [`sort_key`]: a parallel radix sort (rdst). The
+/// keys are distinct (each holds its index), so any sort gives the one
+/// increasing order: equal codes in index order.
+fn sort_keys(keys: &mut [u64]) {
+    keys.radix_sort_unstable();
+}
+
+/// The inverse of the permutation `from` (`to[from[new]] = new`), written
+/// in parallel: every slot is written once, by relaxed atomic stores (plain
+/// stores on x86).
+fn inverse(from: &[u32]) -> Vec<u32> {
+    let to: Vec<AtomicU32> = (0..from.len())
+        .into_par_iter()
+        .map(|_| AtomicU32::new(0))
+        .collect();
+    from.par_iter().enumerate().for_each(|(new, &old)| {
+        to[old as usize].store(new as u32, Ordering::Relaxed);
+    });
+    to.into_par_iter().map(AtomicU32::into_inner).collect()
+}
+
 /// Renumbers `mesh` (points, tetrahedra, point fields), `topology` and the
 /// active `scalar` along the Morton curve of the mesh
 /// bounds: points by their own code, tetrahedra by the code of their
@@ -63,6 +86,21 @@ pub(crate) fn morton_reorder(
     let extent = (hi - glam::Vec3::from_array(lo)).to_array();
     let scale = extent.map(|e| if e > 0.0 { 1.0 / e } else { 0.0 });
 
+    // Tetrahedra, by centroid (of the input points: the same values).
+    let points = &mesh.points;
+    let mut tet_keys: Vec<u64> = mesh
+        .tets
+        .par_iter()
+        .enumerate()
+        .map(|(t, tet)| {
+            let c = tet
+                .iter()
+                .fold(glam::Vec3::ZERO, |c, &v| c + points[v as usize])
+                * 0.25;
+            sort_key(morton(c.to_array(), lo, scale), t)
+        })
+        .collect();
+
     // Points.
     let mut keys: Vec<u64> = mesh
         .points
@@ -70,12 +108,9 @@ pub(crate) fn morton_reorder(
         .enumerate()
         .map(|(i, p)| sort_key(morton(p.to_array(), lo, scale), i))
         .collect();
-    keys.par_sort_unstable();
+    sort_keys(&mut keys);
     let point_from: Vec<u32> = keys.par_iter().map(|&k| k as u32).collect();
-    let mut point_to = vec![0u32; point_from.len()];
-    for (new, &old) in point_from.iter().enumerate() {
-        point_to[old as usize] = new as u32;
-    }
+    let point_to = inverse(&point_from);
     mesh.points = point_from
         .par_iter()
         .map(|&old| mesh.points[old as usize])
@@ -93,24 +128,11 @@ pub(crate) fn morton_reorder(
         }
     }
 
-    // Tetrahedra, by centroid.
-    let points = &mesh.points;
-    keys.clear();
-    keys.par_extend(mesh.tets.par_iter().enumerate().map(|(t, tet)| {
-        let c = tet.iter().fold(glam::Vec3::ZERO, |c, &v| {
-            c + points[point_to[v as usize] as usize]
-        }) * 0.25;
-        sort_key(morton(c.to_array(), lo, scale), t)
-    }));
-    // Keys hold the input index: they are distinct, so the unstable sort
-    // is stable.
-    keys.par_sort_unstable();
-    let tet_from: Vec<u32> = keys.par_iter().map(|&k| k as u32).collect();
     drop(keys);
-    let mut tet_to = vec![0u32; tet_from.len()];
-    for (new, &old) in tet_from.iter().enumerate() {
-        tet_to[old as usize] = new as u32;
-    }
+    sort_keys(&mut tet_keys);
+    let tet_from: Vec<u32> = tet_keys.par_iter().map(|&k| k as u32).collect();
+    drop(tet_keys);
+    let tet_to = inverse(&tet_from);
     mesh.tets = tet_from
         .par_iter()
         .map(|&old| mesh.tets[old as usize].map(|v| point_to[v as usize]))
@@ -145,6 +167,35 @@ mod tests {
         assert_eq!(spread(0x1f_ffff).count_ones(), 21);
         let code = morton([1.0, 0.0, 0.0], [0.0; 3], [1.0; 3]);
         assert_eq!(code, spread(0x1f_ffff));
+    }
+
+    /// The radix sort gives what a comparison sort of the whole keys gives
+    /// (codes from a few cells, so that many tie and the index decides).
+    #[test]
+    fn radix_sort_matches_a_comparison_sort() {
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        for (n, cells) in [
+            (0, 1),
+            (1, 1),
+            (1000, 1),
+            (5000, 7),
+            (70_000, 1 << 20),
+            (70_000, 1 << 32),
+        ] {
+            let mut keys: Vec<u64> = (0..n)
+                .map(|i| {
+                    state ^= state << 13;
+                    state ^= state >> 7;
+                    state ^= state << 17;
+                    let code = (state % cells) << (3 * BITS - 32 - 1);
+                    sort_key(code << 1 | (state >> 63), i)
+                })
+                .collect();
+            let mut want = keys.clone();
+            want.sort_unstable();
+            sort_keys(&mut keys);
+            assert_eq!(keys, want, "{n} keys in {cells} cells");
+        }
     }
 
     #[test]
