@@ -92,7 +92,16 @@ impl GreyKnots {
     fn in_interval(&self, k: isize, s: f32) -> Vec4 {
         let index = (k + 1).clamp(0, self.intervals.len() as isize - 1) as usize;
         let iv = &self.intervals[index];
-        let t = ((s - iv.x0) * iv.inv_width).clamp(0.0, 1.0);
+        // Plain comparisons (NaN stays NaN, as with `clamp`, whose NaN
+        // handling costs more instructions).
+        let t = (s - iv.x0) * iv.inv_width;
+        let t = if t < 0.0 {
+            0.0
+        } else if t > 1.0 {
+            1.0
+        } else {
+            t
+        };
         iv.start + iv.delta * t
     }
 
