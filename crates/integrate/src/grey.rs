@@ -95,6 +95,7 @@ impl GreyKnots {
         // Plain comparisons (NaN stays NaN, as with `clamp`, whose NaN
         // handling costs more instructions).
         let t = (s - iv.x0) * iv.inv_width;
+        #[allow(clippy::manual_clamp)]
         let t = if t < 0.0 {
             0.0
         } else if t > 1.0 {
