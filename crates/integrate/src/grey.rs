@@ -7,6 +7,7 @@
 
 use glam::{Vec3A, Vec4};
 
+use crate::fastmath::clamp_f32;
 use crate::knots::{split_at_knots, TfKnots};
 
 /// Which quantity a grey material carries in `w`.
@@ -92,17 +93,7 @@ impl GreyKnots {
     fn in_interval(&self, k: isize, s: f32) -> Vec4 {
         let index = (k + 1).clamp(0, self.intervals.len() as isize - 1) as usize;
         let iv = &self.intervals[index];
-        // Plain comparisons (NaN stays NaN, as with `clamp`, whose NaN
-        // handling costs more instructions).
-        let t = (s - iv.x0) * iv.inv_width;
-        #[allow(clippy::manual_clamp)]
-        let t = if t < 0.0 {
-            0.0
-        } else if t > 1.0 {
-            1.0
-        } else {
-            t
-        };
+        let t = clamp_f32((s - iv.x0) * iv.inv_width, 0.0, 1.0);
         iv.start + iv.delta * t
     }
 

@@ -2,7 +2,7 @@
 //! `zeta = exp(-(tau_b D + tau_f D)/2)` (eq. 5.6) and Psi looked up in the
 //! table of [`crate::psi::PsiTable`].
 
-use crate::fastmath::exp_f32;
+use crate::fastmath::{clamp_f32, exp_f32};
 use crate::psi::PsiTable;
 use crate::segment::{light_from_weights, SegmentLight, SegmentParams, Weights};
 
@@ -13,14 +13,7 @@ use crate::segment::{light_from_weights, SegmentLight, SegmentParams, Weights};
 pub fn ppi_weights(table: &PsiTable, tau_d_back: f32, tau_d_front: f32) -> Weights {
     let zeta = exp_f32(-0.5 * (tau_d_back + tau_d_front));
     let psi = table.lookup(tau_d_back, tau_d_front);
-    // Plain comparisons (NaN stays NaN).
-    let psi = if psi < zeta {
-        zeta
-    } else if psi > 1.0 {
-        1.0
-    } else {
-        psi
-    };
+    let psi = clamp_f32(psi, zeta, 1.0);
     Weights { zeta, psi }
 }
 

@@ -6,6 +6,7 @@
 use glam::{Vec3, Vec3A};
 use tetray_boundary_bvh::reentry_start;
 use tetray_boundary_bvh::watertight::{crossing_barycentric, edge_sign, RayFrame, RayPoint};
+use tetray_integrate::fastmath::{clamp_f32, max_f32, min_f32};
 use tetray_mesh::FACE_VERTICES;
 
 use crate::scene::{Scene, FINAL_EXIT};
@@ -255,8 +256,8 @@ impl Cell {
         let w = [self.edge(next, prev), -e[prev], e[next]];
         let z = [self.z[apex], self.z[next], self.z[prev]];
         let s = [self.s[apex], self.s[next], self.s[prev]];
-        let lo = min(min(z[0], z[1]), z[2]);
-        let hi = max(max(z[0], z[1]), z[2]);
+        let lo = min_f32(min_f32(z[0], z[1]), z[2]);
+        let hi = max_f32(max_f32(z[0], z[1]), z[2]);
         let sum = w[0] + w[1] + w[2];
         if sum == 0.0 {
             // The ray in the face's plane: any point of the face is the
@@ -274,29 +275,7 @@ impl Cell {
         let t = (w[0] * f64::from(z[0]) + w[1] * f64::from(z[1]) + w[2] * f64::from(z[2])) * inv;
         let value =
             (w[0] * f64::from(s[0]) + w[1] * f64::from(s[1]) + w[2] * f64::from(s[2])) * inv;
-        Some((f, min(max(t as f32, lo), hi), value as f32))
-    }
-}
-
-/// The smaller of `a` and `b` by one comparison: the walk's distances are
-/// finite (validated points), where `f32::min`'s NaN handling costs three
-/// more instructions per call.
-#[inline(always)]
-fn min(a: f32, b: f32) -> f32 {
-    if b < a {
-        b
-    } else {
-        a
-    }
-}
-
-/// The larger of `a` and `b` by one comparison (see [`min`]).
-#[inline(always)]
-fn max(a: f32, b: f32) -> f32 {
-    if b > a {
-        b
-    } else {
-        a
+        Some((f, clamp_f32(t as f32, lo, hi), value as f32))
     }
 }
 
@@ -478,7 +457,7 @@ impl<S: Copy> Walker<S> {
         let Some(sample_in) = self.sample_in else {
             unreachable!("set on entry");
         };
-        let t_out = max(t_exit, t_in);
+        let t_out = max_f32(t_exit, t_in);
         let sample_out = integrator.sample_near(s_out, &sample_in);
         if t_out > t_in {
             self.skip.clear();
@@ -491,7 +470,7 @@ impl<S: Copy> Walker<S> {
                 } else {
                     sample_in
                 };
-                let length = t_out - max(t_in, 0.0);
+                let length = t_out - max_f32(t_in, 0.0);
                 let (emitted, transmittance) = integrator.segment(&front, &sample_out, length);
                 let light = &mut self.light;
                 light.color += light.transmittance * emitted;
