@@ -34,7 +34,7 @@ impl BoundaryBvh {
                     && !extremes
                         .iter()
                         .any(|&q| in_front(q, a, normal, normal_length))
-                    && self.all_behind(a, normal, stack)
+                    && self.all_behind(a, normal, normal_length, stack)
             })
             .collect()
     }
@@ -82,14 +82,19 @@ impl BoundaryBvh {
     }
 
     /// Whether every boundary point `q` has `(q - point) . normal <= 0`
-    /// (up to [`COPLANAR_REL`]), pruning subtrees whose boxes lie behind and
+    /// (up to [`COPLANAR_REL`]; `normal_length`: the normal's length), pruning subtrees whose boxes lie behind and
     /// descending first into the child reaching farthest in front, where a
     /// point in front is likeliest (`stack`: the traversal's, reused
     /// between calls).
-    fn all_behind(&self, point: DVec3, normal: DVec3, stack: &mut Vec<u32>) -> bool {
+    fn all_behind(
+        &self,
+        point: DVec3,
+        normal: DVec3,
+        normal_length: f64,
+        stack: &mut Vec<u32>,
+    ) -> bool {
         let nodes = &self.bvh.nodes;
         let abs_normal = normal.abs();
-        let normal_length = normal.length();
         // How far the box of node `index` reaches in front of the plane, or
         // `None` when it lies wholly behind.
         let reach = |index: u32| {
