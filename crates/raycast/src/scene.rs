@@ -265,16 +265,11 @@ fn active_field(mesh: &TetMesh, name: &str) -> Result<Vec<f32>, SceneError> {
             points: mesh.points.len(),
         });
     }
-    if let Some((point, &value)) = field
-        .values
-        .iter()
-        .enumerate()
-        .find(|(_, v)| !v.is_finite())
-    {
+    if let Some(point) = first_position(&field.values, |v| !v.is_finite()) {
         return Err(SceneError::NonFiniteScalar {
             name: name.to_string(),
             point,
-            value,
+            value: field.values[point],
         });
     }
     Ok(field.values.clone())
