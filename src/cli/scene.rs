@@ -70,7 +70,10 @@ pub fn prepare(frame: FrameArgs<'_>, log: &dyn Fn(String)) -> anyhow::Result<Set
         )?);
     }
     let input = load_mesh(frame.mesh)?;
-    Ok(tetray_frame::prepare(input, &options, log)?)
+    let setup = tetray_frame::prepare(input, &options, log);
+    // The load's temporaries are gone: give back what the allocator kept.
+    crate::ALLOCATOR.release();
+    Ok(setup?)
 }
 
 /// Sets the size of rayon's global pool, before any parallel work.

@@ -1,0 +1,137 @@
+//! Each test has its own [`Recycling`], so the kept blocks it checks are
+//! its own.
+
+use super::*;
+
+const MIB: usize = 1 << 20;
+
+fn layout(size: usize) -> Layout {
+    Layout::from_size_align(size, 8).unwrap()
+}
+
+/// Fills `size` bytes at `ptr` with a pattern of `seed`.
+fn fill(ptr: *mut u8, size: usize, seed: u8) {
+    // SAFETY: the tests pass live blocks of at least `size` bytes.
+    let bytes = unsafe { std::slice::from_raw_parts_mut(ptr, size) };
+    for (i, b) in bytes.iter_mut().enumerate() {
+        *b = (i as u8).wrapping_mul(31).wrapping_add(seed);
+    }
+}
+
+/// Whether `size` bytes at `ptr` hold the pattern of `seed`.
+fn holds(ptr: *const u8, size: usize, seed: u8) -> bool {
+    // SAFETY: as in `fill`.
+    let bytes = unsafe { std::slice::from_raw_parts(ptr, size) };
+    bytes
+        .iter()
+        .enumerate()
+        .all(|(i, &b)| b == (i as u8).wrapping_mul(31).wrapping_add(seed))
+}
+
+fn all_zero(ptr: *const u8, size: usize) -> bool {
+    // SAFETY: as in `fill`.
+    unsafe { std::slice::from_raw_parts(ptr, size) }
+        .iter()
+        .all(|&b| b == 0)
+}
+
+#[test]
+fn a_freed_large_block_serves_the_next_and_zeroed_means_zeroed() {
+    let a = Recycling::new();
+    let size = 20 * MIB + 123;
+    // SAFETY: layouts of non-zero size; every block is freed once, with the
+    // layout it was allocated with (so in every test below).
+    unsafe {
+        let p = a.alloc(layout(size));
+        assert!(!p.is_null());
+        fill(p, size, 7);
+        a.dealloc(p, layout(size));
+        assert_eq!(a.kept_bytes(), page_round(size));
+        let q = a.alloc_zeroed(layout(size));
+        assert_eq!(q, p, "the kept block is reused");
+        assert_eq!(a.kept_bytes(), 0);
+        assert!(all_zero(q, size), "a recycled block is cleared for alloc_zeroed");
+        a.dealloc(q, layout(size));
+    }
+    a.release();
+    assert_eq!(a.kept_bytes(), 0);
+}
+
+#[test]
+fn the_smallest_block_that_fits_is_chosen_and_its_surplus_returned() {
+    let a = Recycling::new();
+    // SAFETY: as above.
+    unsafe {
+        let big = a.alloc(layout(64 * MIB));
+        let small = a.alloc(layout(32 * MIB));
+        a.dealloc(big, layout(64 * MIB));
+        a.dealloc(small, layout(32 * MIB));
+        let p = a.alloc(layout(20 * MIB));
+        assert_eq!(p, small);
+        // The 12 MiB surplus is unmapped, not kept.
+        assert_eq!(a.kept_bytes(), 64 * MIB);
+        // A request larger than every kept block grows the largest.
+        let q = a.alloc_zeroed(layout(80 * MIB));
+        assert!(!q.is_null());
+        assert_eq!(a.kept_bytes(), 0);
+        assert!(all_zero(q, 80 * MIB));
+        fill(q, 80 * MIB, 3);
+        assert!(holds(q, 80 * MIB, 3));
+        a.dealloc(p, layout(20 * MIB));
+        a.dealloc(q, layout(80 * MIB));
+    }
+    a.release();
+}
+
+#[test]
+fn realloc_keeps_the_contents_across_every_size_class() {
+    let a = Recycling::new();
+    // SAFETY: as above; each realloc's result replaces the old pointer.
+    unsafe {
+        // Small to large, large to larger, larger to smaller, large to small.
+        let mut size = MIB;
+        let mut p = a.alloc(layout(size));
+        fill(p, size, 11);
+        for next in [24 * MIB, 100 * MIB + 5, 17 * MIB, 3 * MIB] {
+            p = a.realloc(p, layout(size), next);
+            assert!(!p.is_null());
+            assert!(holds(p, size.min(next), 11), "{size} -> {next}");
+            size = next;
+            fill(p, size, 11);
+        }
+        a.dealloc(p, layout(size));
+    }
+    a.release();
+}
+
+#[test]
+fn at_most_slots_blocks_are_kept_and_the_smallest_go_first() {
+    let a = Recycling::new();
+    let sizes: Vec<usize> = (0..SLOTS + 2).map(|i| (17 + i) * MIB).collect();
+    // SAFETY: as above.
+    unsafe {
+        let blocks: Vec<*mut u8> = sizes.iter().map(|&s| a.alloc(layout(s))).collect();
+        for (&p, &s) in blocks.iter().zip(&sizes) {
+            a.dealloc(p, layout(s));
+        }
+    }
+    let kept: usize = sizes[2..].iter().sum();
+    assert_eq!(a.kept_bytes(), kept);
+    a.release();
+    assert_eq!(a.kept_bytes(), 0);
+}
+
+#[test]
+fn small_and_overaligned_allocations_are_the_systems() {
+    let a = Recycling::new();
+    let over = Layout::from_size_align(LARGE, 2 * page_size()).unwrap();
+    // SAFETY: as above.
+    unsafe {
+        let p = a.alloc(layout(LARGE - 1));
+        let q = a.alloc(over);
+        assert_eq!(q as usize % over.align(), 0);
+        a.dealloc(p, layout(LARGE - 1));
+        a.dealloc(q, over);
+    }
+    assert_eq!(a.kept_bytes(), 0, "neither is kept");
+}
