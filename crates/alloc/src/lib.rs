@@ -114,9 +114,7 @@ impl Recycling {
             cache.count += 1;
             return;
         }
-        let smallest = (0..SLOTS)
-            .min_by_key(|&i| cache.blocks[i].len)
-            .unwrap_or(0);
+        let smallest = (0..SLOTS).min_by_key(|&i| cache.blocks[i].len).unwrap_or(0);
         let out = if cache.blocks[smallest].len < block.len {
             std::mem::replace(&mut cache.blocks[smallest], block)
         } else {

@@ -50,7 +50,10 @@ fn a_freed_large_block_serves_the_next_and_zeroed_means_zeroed() {
         let q = a.alloc_zeroed(layout(size));
         assert_eq!(q, p, "the kept block is reused");
         assert_eq!(a.kept_bytes(), 0);
-        assert!(all_zero(q, size), "a recycled block is cleared for alloc_zeroed");
+        assert!(
+            all_zero(q, size),
+            "a recycled block is cleared for alloc_zeroed"
+        );
         a.dealloc(q, layout(size));
     }
     a.release();

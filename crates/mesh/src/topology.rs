@@ -3,7 +3,8 @@
 //!
 //! Faces are matched by bucketing, not hashing: every face of every
 //! tetrahedron, its three point indices sorted, goes to the bucket of its
-//! smallest point (a counting sort over the points, 4 bytes per face),
+//! smallest point (a counting sort over the points, 4 bytes per face, by
+//! chunks of tetrahedra in parallel),
 //! then each bucket (in parallel; buckets hold a few dozen faces) is
 //! sorted by the other two points, read back from the tetrahedra, and the
 //! two faces of each run of equal points are each other's neighbour (each
@@ -22,12 +23,22 @@ pub const MAX_TETS: usize = (u32::MAX / 4) as usize;
 /// Buckets sorted by one rayon task.
 const BUCKETS_PER_TASK: usize = 4096;
 
+/// At most this many chunks fill the buckets in parallel: each holds a
+/// count per point while it does.
+const MAX_CHUNKS: usize = 8;
+
 /// The point indices of local face `f` of `tet`, sorted.
 fn sorted_face(tet: &[u32; 4], f: usize) -> [u32; 3] {
     let [a, b, c] = FACE_VERTICES[f];
     let mut v = [tet[a], tet[b], tet[c]];
     v.sort_unstable();
     v
+}
+
+/// The smallest point index of local face `f` of `tet` (its bucket).
+fn smallest_point(tet: &[u32; 4], f: usize) -> usize {
+    let [a, b, c] = FACE_VERTICES[f];
+    tet[a].min(tet[b]).min(tet[c]) as usize
 }
 
 /// A face shared by more than two tetrahedra: its points and theirs.
@@ -54,29 +65,59 @@ impl<'t> FaceBuckets<'t> {
             .map(|t| t.iter().copied().max().unwrap_or(0) as usize + 1)
             .max()
             .unwrap_or(0);
+        // A counting sort in parallel: each chunk of tetrahedra counts its
+        // faces per bucket, then writes them at its own cursors, after the
+        // earlier chunks' faces of the same bucket (so the entries are the
+        // same whatever the thread count).
+        let chunks = rayon::current_num_threads().clamp(1, MAX_CHUNKS);
+        let chunk_len = tets.len().div_ceil(chunks).max(1);
+        let mut cursors: Vec<Vec<u32>> = tets
+            .par_chunks(chunk_len)
+            .map(|chunk| {
+                let mut counts = vec![0u32; points];
+                for tet in chunk {
+                    for f in 0..4 {
+                        counts[smallest_point(tet, f)] += 1;
+                    }
+                }
+                counts
+            })
+            .collect();
         let mut offsets = vec![0u32; points + 1];
-        for tet in tets {
-            for f in 0..4 {
-                offsets[sorted_face(tet, f)[0] as usize + 1] += 1;
-            }
-        }
+        let mut total = 0u32;
         for p in 0..points {
-            offsets[p + 1] += offsets[p];
-        }
-        let mut cursor = offsets.clone();
-        let mut entries = vec![0u32; 4 * tets.len()];
-        for (t, tet) in tets.iter().enumerate() {
-            for f in 0..4 {
-                let slot = &mut cursor[sorted_face(tet, f)[0] as usize];
-                // t < MAX_TETS, so 4 t + 3 fits in u32.
-                entries[*slot as usize] = 4 * t as u32 + f as u32;
-                *slot += 1;
+            offsets[p] = total;
+            for counts in &mut cursors {
+                // The chunk's first slot in bucket p; at most 4 * MAX_TETS.
+                let n = counts[p];
+                counts[p] = total;
+                total += n;
             }
         }
+        offsets[points] = total;
+        let entries: Vec<AtomicU32> = (0..4 * tets.len())
+            .into_par_iter()
+            .map(|_| AtomicU32::new(0))
+            .collect();
+        tets.par_chunks(chunk_len)
+            .zip(cursors.par_iter_mut())
+            .enumerate()
+            .for_each(|(c, (chunk, cursor))| {
+                for (i, tet) in chunk.iter().enumerate() {
+                    // t < MAX_TETS, so 4 t + 3 fits in u32.
+                    let t = (c * chunk_len + i) as u32;
+                    for f in 0..4 {
+                        let slot = &mut cursor[smallest_point(tet, f)];
+                        // Every slot is written once, by its chunk.
+                        entries[*slot as usize].store(4 * t + f as u32, Ordering::Relaxed);
+                        *slot += 1;
+                    }
+                }
+            });
         FaceBuckets {
             tets,
             offsets,
-            entries,
+            entries: entries.into_iter().map(AtomicU32::into_inner).collect(),
         }
     }
 

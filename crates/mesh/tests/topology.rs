@@ -256,6 +256,16 @@ fn matches_a_hash_map_on_a_shuffled_mesh() {
     let topo = Topology::build(&mesh).unwrap();
     check_consistent(&mesh, &topo);
     check_outward(&mesh, &topo);
+    // The buckets are filled by one chunk of tetrahedra per thread: any
+    // thread count gives the same topology.
+    for threads in [1, 3, 8] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        let again = pool.install(|| Topology::build(&mesh)).unwrap();
+        assert!(again == topo, "{threads} threads");
+    }
 
     let mut faces: std::collections::HashMap<[u32; 3], Vec<u32>> = Default::default();
     for (t, tet) in mesh.tets.iter().enumerate() {
