@@ -11,13 +11,13 @@
 //!
 //! [`Recycling`] keeps large freed blocks (at least [`LARGE`] bytes) mapped
 //! and hands them to the next large allocation: the smallest kept block that
-//! is big enough, its surplus pages returned to the system; or, when none is,
-//! the largest kept block grown in place or moved by `mremap` (its pages keep
-//! their frames, only the new tail is fresh). Small allocations go to the
-//! system allocator unchanged.
+//! is big enough (its surplus kept apart); or, when none is,
+//! a fresh mapping into which `mremap` moves the kept blocks' pages, largest
+//! first, until it is covered (only the rest is faulted in anew). Small
+//! allocations go to the system allocator unchanged.
 //!
-//! Kept blocks stay resident until a large allocation reuses them, until
-//! [`Recycling::release`], or until they are evicted by a larger freed block
+//! Kept blocks stay resident until the next large allocation takes them,
+//! until [`Recycling::release`], or until a larger freed block evicts them
 //! (at most [`SLOTS`] are kept). A program calls `release` once its large
 //! temporaries are gone.
 //!
@@ -88,20 +88,22 @@ impl Recycling {
         self.cache.lock().unwrap_or_else(|e| e.into_inner())
     }
 
-    /// Takes the kept block to serve `len` bytes: the smallest at least that
-    /// long, else the largest.
-    fn take(&self, len: usize) -> Option<Block> {
+    /// Takes the smallest kept block at least `len` bytes long.
+    fn take_fit(&self, len: usize) -> Option<Block> {
         let mut cache = self.lock();
         let kept = &cache.blocks[..cache.count];
-        let fit = (0..kept.len())
+        let i = (0..kept.len())
             .filter(|&i| kept[i].len >= len)
-            .min_by_key(|&i| kept[i].len);
-        let i = fit.or_else(|| (0..kept.len()).max_by_key(|&i| kept[i].len))?;
-        let block = kept[i];
-        cache.count -= 1;
-        let last = cache.count;
-        cache.blocks[i] = cache.blocks[last];
-        Some(block)
+            .min_by_key(|&i| kept[i].len)?;
+        Some(cache.remove(i))
+    }
+
+    /// Takes the largest kept block.
+    fn take_largest(&self) -> Option<Block> {
+        let mut cache = self.lock();
+        let kept = &cache.blocks[..cache.count];
+        let i = (0..kept.len()).max_by_key(|&i| kept[i].len)?;
+        Some(cache.remove(i))
     }
 
     /// Keeps a freed block, evicting the smallest kept one if it is full
@@ -124,40 +126,69 @@ impl Recycling {
         unmap(out);
     }
 
-    /// Maps `size` bytes (`size >= LARGE`), from a kept block if any.
+    /// Maps `size` bytes (`size >= LARGE`): the smallest kept block that
+    /// is long enough (the rest of it kept apart), or else a fresh mapping
+    /// into which the kept blocks are moved, largest first, until it is
+    /// covered (so no kept page stays idle while a large allocation faults
+    /// in new ones).
     fn alloc_large(&self, size: usize, zero: bool) -> *mut u8 {
         let len = page_round(size);
-        if let Some(block) = self.take(len) {
-            if block.len >= len {
-                if block.len > len {
-                    unmap(Block {
-                        addr: block.addr + len,
-                        len: block.len - len,
-                    });
-                }
-                let ptr = block.addr as *mut u8;
-                if zero {
-                    // SAFETY: `block` is a mapping of at least `len >= size`
-                    // writable bytes owned by no one else.
-                    unsafe { ptr.write_bytes(0, size) };
-                }
-                return ptr;
+        if let Some(block) = self.take_fit(len) {
+            if block.len > len {
+                self.keep(Block {
+                    addr: block.addr + len,
+                    len: block.len - len,
+                });
             }
-            // SAFETY: `block` is a whole mapping of ours; on failure it is
-            // left as it was.
-            let ptr = unsafe { remap(block, len) };
-            if ptr.is_null() {
-                unmap(block);
-            } else {
-                if zero {
-                    // SAFETY: the first `block.len` bytes of the grown
-                    // mapping are the old block's (the rest is fresh, zero).
-                    unsafe { ptr.write_bytes(0, block.len) };
-                }
-                return ptr;
+            let ptr = block.addr as *mut u8;
+            if zero {
+                // SAFETY: `block` is a mapping of at least `len >= size`
+                // writable bytes owned by no one else.
+                unsafe { ptr.write_bytes(0, size) };
             }
+            return ptr;
         }
-        map(len)
+        let ptr = map(len);
+        if ptr.is_null() {
+            return ptr;
+        }
+        let mut filled = 0;
+        while filled < len {
+            let Some(block) = self.take_largest() else {
+                break;
+            };
+            let n = block.len.min(len - filled);
+            let to = ptr as usize + filled;
+            // SAFETY: `block` is a mapping of ours that no one uses, and
+            // `to .. to + n` lies inside the fresh mapping `ptr`.
+            if !unsafe { move_pages(block.addr, n, to) } {
+                unmap(block);
+                break;
+            }
+            if block.len > n {
+                self.keep(Block {
+                    addr: block.addr + n,
+                    len: block.len - n,
+                });
+            }
+            if zero {
+                // SAFETY: `to .. to + n` is now the moved pages, inside
+                // the new allocation.
+                unsafe { (to as *mut u8).write_bytes(0, n) };
+            }
+            filled += n;
+        }
+        ptr
+    }
+}
+
+impl Cache {
+    /// Removes and returns block `i`.
+    fn remove(&mut self, i: usize) -> Block {
+        let block = self.blocks[i];
+        self.count -= 1;
+        self.blocks[i] = self.blocks[self.count];
+        block
     }
 }
 
@@ -205,10 +236,11 @@ fn unmap(block: Block) {
 }
 
 /// Resizes the mapping `block` to `len` bytes, moving it if needed; null
-/// (the mapping unchanged) on failure.
+/// (the mapping unchanged) on failure, as when `block` spans several
+/// mappings.
 ///
 /// # Safety
-/// `block` must be a whole mapping made by this allocator.
+/// `block` must be a whole block of this allocator.
 #[cfg(target_os = "linux")]
 unsafe fn remap(block: Block, len: usize) -> *mut u8 {
     // SAFETY: the caller's contract; MREMAP_MAYMOVE keeps the contents.
@@ -227,9 +259,36 @@ unsafe fn remap(block: Block, len: usize) -> *mut u8 {
     }
 }
 
+/// Moves the pages of `from .. from + len` to `to .. to + len` (replacing
+/// what was mapped there); whether it did.
+///
+/// # Safety
+/// `from .. from + len` must be (the start of) a mapping of ours that no
+/// one uses, and `to .. to + len` a page-aligned range of a mapping of ours
+/// that no one uses.
+#[cfg(target_os = "linux")]
+unsafe fn move_pages(from: usize, len: usize, to: usize) -> bool {
+    // SAFETY: the caller's contract: both ranges are ours and unused.
+    let ptr = unsafe {
+        libc::mremap(
+            from as *mut libc::c_void,
+            len,
+            len,
+            libc::MREMAP_MAYMOVE | libc::MREMAP_FIXED,
+            to as *mut libc::c_void,
+        )
+    };
+    ptr != libc::MAP_FAILED
+}
+
 #[cfg(not(target_os = "linux"))]
 unsafe fn remap(_block: Block, _len: usize) -> *mut u8 {
     std::ptr::null_mut()
+}
+
+#[cfg(not(target_os = "linux"))]
+unsafe fn move_pages(_from: usize, _len: usize, _to: usize) -> bool {
+    false
 }
 
 // SAFETY: large blocks are page-aligned mappings of at least the layout's
@@ -283,24 +342,40 @@ unsafe impl GlobalAlloc for Recycling {
                 if len == block.len {
                     return ptr;
                 }
-                // SAFETY: `ptr` is a whole mapping of ours (a large block).
-                unsafe { remap(block, len) }
-            }
-            _ => {
-                // SAFETY: `new_layout` has a non-zero size (`layout` is
-                // large, or `new_layout` is).
-                let new = unsafe { self.alloc(new_layout) };
-                if !new.is_null() {
-                    // SAFETY: both blocks are live, distinct and at least
-                    // the copied length long.
-                    unsafe {
-                        std::ptr::copy_nonoverlapping(ptr, new, layout.size().min(new_size));
-                        self.dealloc(ptr, layout);
-                    }
+                // SAFETY: `ptr` is a whole block of ours (a large one).
+                let moved = unsafe { remap(block, len) };
+                if !moved.is_null() {
+                    return moved;
                 }
-                new
+                // A block made of moved pages may span mappings that the
+                // kernel did not merge, which mremap refuses: copy instead.
+                // SAFETY: the caller's contract, as below.
+                unsafe { self.realloc_by_copy(ptr, layout, new_layout) }
+            }
+            // SAFETY: the caller's contract.
+            _ => unsafe { self.realloc_by_copy(ptr, layout, new_layout) },
+        }
+    }
+}
+
+impl Recycling {
+    /// Reallocates by allocating, copying and freeing.
+    ///
+    /// # Safety
+    /// As [`GlobalAlloc::realloc`], with `new_layout` the new size and the
+    /// old alignment.
+    unsafe fn realloc_by_copy(&self, ptr: *mut u8, layout: Layout, new_layout: Layout) -> *mut u8 {
+        // SAFETY: `new_layout` has a non-zero size (realloc's contract).
+        let new = unsafe { self.alloc(new_layout) };
+        if !new.is_null() {
+            // SAFETY: both blocks are live, distinct and at least the
+            // copied length long.
+            unsafe {
+                std::ptr::copy_nonoverlapping(ptr, new, layout.size().min(new_layout.size()));
+                self.dealloc(ptr, layout);
             }
         }
+        new
     }
 }
 

@@ -61,7 +61,7 @@ fn a_freed_large_block_serves_the_next_and_zeroed_means_zeroed() {
 }
 
 #[test]
-fn the_smallest_block_that_fits_is_chosen_and_its_surplus_returned() {
+fn the_smallest_block_that_fits_is_chosen_and_its_surplus_kept() {
     let a = Recycling::new();
     // SAFETY: as above.
     unsafe {
@@ -71,9 +71,9 @@ fn the_smallest_block_that_fits_is_chosen_and_its_surplus_returned() {
         a.dealloc(small, layout(32 * MIB));
         let p = a.alloc(layout(20 * MIB));
         assert_eq!(p, small);
-        // The 12 MiB surplus is unmapped, not kept.
-        assert_eq!(a.kept_bytes(), 64 * MIB);
-        // A request larger than every kept block grows the largest.
+        // The 12 MiB surplus is kept apart.
+        assert_eq!(a.kept_bytes(), 76 * MIB);
+        // A request larger than every kept block takes their pages.
         let q = a.alloc_zeroed(layout(80 * MIB));
         assert!(!q.is_null());
         assert_eq!(a.kept_bytes(), 0);
@@ -82,6 +82,37 @@ fn the_smallest_block_that_fits_is_chosen_and_its_surplus_returned() {
         assert!(holds(q, 80 * MIB, 3));
         a.dealloc(p, layout(20 * MIB));
         a.dealloc(q, layout(80 * MIB));
+    }
+    a.release();
+}
+
+#[test]
+fn a_request_larger_than_any_kept_block_takes_the_pages_of_several() {
+    let a = Recycling::new();
+    // SAFETY: as above.
+    unsafe {
+        let x = a.alloc(layout(20 * MIB));
+        let y = a.alloc(layout(30 * MIB));
+        fill(x, 20 * MIB, 1);
+        fill(y, 30 * MIB, 2);
+        a.dealloc(x, layout(20 * MIB));
+        a.dealloc(y, layout(30 * MIB));
+        let p = a.alloc_zeroed(layout(45 * MIB));
+        assert!(!p.is_null());
+        assert!(
+            all_zero(p, 45 * MIB),
+            "moved pages are cleared for alloc_zeroed"
+        );
+        // 30 MiB moved whole, 15 of the 20 MiB block; its last 5 are kept.
+        assert_eq!(a.kept_bytes(), 5 * MIB);
+        fill(p, 45 * MIB, 9);
+        let q = a.alloc(layout(60 * MIB));
+        assert_eq!(a.kept_bytes(), 0);
+        fill(q, 60 * MIB, 4);
+        assert!(holds(p, 45 * MIB, 9), "the first block is untouched");
+        assert!(holds(q, 60 * MIB, 4));
+        a.dealloc(p, layout(45 * MIB));
+        a.dealloc(q, layout(60 * MIB));
     }
     a.release();
 }
