@@ -60,51 +60,9 @@ struct FaceTree {
 
 impl FaceTree {
     fn build(corners: &[[DVec3; 3]]) -> FaceTree {
-        let mut tree = FaceTree {
-            nodes: Vec::new(),
-            order: (0..corners.len() as u32).collect(),
-        };
-        let count = corners.len();
-        tree.split(corners, 0, count);
-        tree
-    }
-
-    fn split(&mut self, corners: &[[DVec3; 3]], start: usize, end: usize) -> u32 {
-        let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
-        for &f in &self.order[start..end] {
-            for p in corners[f as usize] {
-                lo = lo.min(p);
-                hi = hi.max(p);
-            }
-        }
-        let index = self.nodes.len();
-        self.nodes.push(Node {
-            lo,
-            hi,
-            start: start as u32,
-            end: end as u32,
-            leaf: true,
-        });
-        if end - start > LEAF {
-            let axis = (hi - lo).max_position();
-            let centroid = |f: u32| {
-                let [a, b, c] = corners[f as usize];
-                (a + b + c)[axis]
-            };
-            let mid = (start + end) / 2;
-            self.order[start..end]
-                .select_nth_unstable_by(mid - start, |&x, &y| centroid(x).total_cmp(&centroid(y)));
-            let left = self.split(corners, start, mid);
-            let right = self.split(corners, mid, end);
-            self.nodes[index] = Node {
-                lo,
-                hi,
-                start: left,
-                end: right,
-                leaf: false,
-            };
-        }
-        index as u32
+        let mut order: Vec<u32> = (0..corners.len() as u32).collect();
+        let nodes = subtree(corners, &mut order, 0);
+        FaceTree { nodes, order }
     }
 
     /// Calls `visit` on every face whose box, grown by `tol`, holds `p`,
@@ -130,6 +88,105 @@ impl FaceTree {
         }
         false
     }
+}
+
+/// From this many faces a subtree's two halves are built in parallel.
+const PARALLEL_FACES: usize = 1 << 15;
+
+/// The nodes of the subtree over `order` (the faces from `start` on in the
+/// whole order; reordered in place), in preorder: its root first, then the
+/// left subtree, then the right one. Leaves hold ranges of the whole order;
+/// inner nodes hold child indices within this subtree's nodes.
+fn subtree(corners: &[[DVec3; 3]], order: &mut [u32], start: usize) -> Vec<Node> {
+    if order.len() < PARALLEL_FACES {
+        let mut nodes = Vec::new();
+        split(corners, order, start, &mut nodes);
+        return nodes;
+    }
+    let (lo, hi, mid) = bounds_and_median(corners, order);
+    let (left_order, right_order) = order.split_at_mut(mid);
+    let (left, right) = rayon::join(
+        || subtree(corners, left_order, start),
+        || subtree(corners, right_order, start + mid),
+    );
+    let right_root = 1 + left.len();
+    let mut nodes = Vec::with_capacity(right_root + right.len());
+    nodes.push(Node {
+        lo,
+        hi,
+        start: 1,
+        end: right_root as u32,
+        leaf: false,
+    });
+    for (offset, part) in [(1, left), (right_root, right)] {
+        nodes.extend(part.into_iter().map(|mut node| {
+            if !node.leaf {
+                node.start += offset as u32;
+                node.end += offset as u32;
+            }
+            node
+        }));
+    }
+    nodes
+}
+
+/// Appends the subtree over `order` (from `start` on in the whole order)
+/// to `nodes` in preorder, serially; returns its root's index.
+fn split(corners: &[[DVec3; 3]], order: &mut [u32], start: usize, nodes: &mut Vec<Node>) -> u32 {
+    let index = nodes.len();
+    let count = order.len();
+    if count <= LEAF {
+        let (lo, hi) = bounds(corners, order);
+        nodes.push(Node {
+            lo,
+            hi,
+            start: start as u32,
+            end: (start + count) as u32,
+            leaf: true,
+        });
+        return index as u32;
+    }
+    let (lo, hi, mid) = bounds_and_median(corners, order);
+    // Replaced below once the children's indices are known.
+    nodes.push(Node {
+        lo,
+        hi,
+        start: 0,
+        end: 0,
+        leaf: false,
+    });
+    let (left_order, right_order) = order.split_at_mut(mid);
+    let left = split(corners, left_order, start, nodes);
+    let right = split(corners, right_order, start + mid, nodes);
+    nodes[index].start = left;
+    nodes[index].end = right;
+    index as u32
+}
+
+/// The bounds of the faces of `order`.
+fn bounds(corners: &[[DVec3; 3]], order: &[u32]) -> (DVec3, DVec3) {
+    let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+    for &f in order {
+        for p in corners[f as usize] {
+            lo = lo.min(p);
+            hi = hi.max(p);
+        }
+    }
+    (lo, hi)
+}
+
+/// The bounds of the faces of `order`, and `order` split at its middle
+/// along the bounds' longest axis (by the faces' centroids).
+fn bounds_and_median(corners: &[[DVec3; 3]], order: &mut [u32]) -> (DVec3, DVec3, usize) {
+    let (lo, hi) = bounds(corners, order);
+    let axis = (hi - lo).max_position();
+    let centroid = |f: u32| {
+        let [a, b, c] = corners[f as usize];
+        (a + b + c)[axis]
+    };
+    let mid = order.len() / 2;
+    order.select_nth_unstable_by(mid, |&x, &y| centroid(x).total_cmp(&centroid(y)));
+    (lo, hi, mid)
 }
 
 /// Distance from `p` to the segment `a b`.
@@ -382,4 +439,57 @@ fn faces_by_point(topology: &Topology, npoints: usize) -> (Vec<usize>, Vec<u32>)
         }
     }
     (start, list)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The tree built in parallel (above `PARALLEL_FACES`) is the one built
+    /// serially, node for node, and its queries visit every face whose
+    /// grown box holds the point.
+    #[test]
+    fn parallel_face_tree_is_the_serial_one() {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let corners: Vec<[DVec3; 3]> = (0..3 * PARALLEL_FACES)
+            .map(|_| {
+                let c = DVec3::new(next(), next(), next()) * 100.0;
+                [0, 1, 2].map(|_| c + DVec3::new(next(), next(), next()))
+            })
+            .collect();
+        let tree = FaceTree::build(&corners);
+        let mut order: Vec<u32> = (0..corners.len() as u32).collect();
+        let mut nodes = Vec::new();
+        split(&corners, &mut order, 0, &mut nodes);
+        assert_eq!(tree.order, order);
+        assert_eq!(tree.nodes.len(), nodes.len());
+        for (a, b) in tree.nodes.iter().zip(&nodes) {
+            assert_eq!(
+                (a.lo, a.hi, a.start, a.end, a.leaf),
+                (b.lo, b.hi, b.start, b.end, b.leaf)
+            );
+        }
+        let tol = 0.01;
+        for _ in 0..200 {
+            let p = DVec3::new(next(), next(), next()) * 100.0;
+            let mut visited = vec![false; corners.len()];
+            tree.any_near(p, tol, |f| {
+                visited[f as usize] = true;
+                false
+            });
+            for (f, t) in corners.iter().enumerate() {
+                let lo = t[0].min(t[1]).min(t[2]) - tol;
+                let hi = t[0].max(t[1]).max(t[2]) + tol;
+                if p.cmpge(lo).all() && p.cmple(hi).all() {
+                    assert!(visited[f], "face {f} near {p}");
+                }
+            }
+        }
+    }
 }
