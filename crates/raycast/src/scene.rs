@@ -163,14 +163,17 @@ impl Scene {
         }
         check_boundary_faces(&mesh, &topology)?;
         let (mut mesh, mut topology, mut scalar) = (mesh, topology, scalar);
-        let (mut walk, order) = match cell_order {
-            CellOrder::File => (walk_tets(&mesh, &topology, None)?, None),
-            CellOrder::Morton => {
-                let order = morton_reorder(&mut mesh, &mut topology, &mut scalar);
-                (walk_tets(&mesh, &topology, Some(&order))?, Some(order))
-            }
+        let order = match cell_order {
+            CellOrder::File => None,
+            CellOrder::Morton => Some(morton_reorder(&mut mesh, &mut topology, &mut scalar)),
         };
-        let bvh = BoundaryBvh::build(&mesh, &topology, preset)?;
+        // The BVH build is serial (obvhs): it runs beside the parallel
+        // walk records.
+        let (walk, bvh) = rayon::join(
+            || walk_tets(&mesh, &topology, order.as_ref()),
+            || BoundaryBvh::build(&mesh, &topology, preset),
+        );
+        let (mut walk, bvh) = (walk?, bvh?);
         for (face, is_final) in topology.boundary_faces.iter().zip(bvh.final_exit_faces()) {
             if is_final {
                 walk[face.tet as usize].next[usize::from(face.local_face)] = FINAL_EXIT;
