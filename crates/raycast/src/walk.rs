@@ -292,7 +292,7 @@ enum Phase {
 /// One ray in flight, advanced one tetrahedron at a time, so that a thread
 /// can keep several independent walks going and overlap their memory
 /// latencies (each step is a chain of dependent loads: neighbour index,
-/// vertex indices, vertex positions).
+/// vertex indices, vertex positions; see [`Walker::advance`]).
 pub(crate) struct Walker<S> {
     ray: RayFrame,
     phase: Phase,
@@ -307,6 +307,9 @@ pub(crate) struct Walker<S> {
     skip_t: f32,
     tet: usize,
     f_in: usize,
+    /// Whether `cell` is still to be loaded from `tet` (a prefetching walk
+    /// loads it at the start of the step that crosses it).
+    pending: bool,
     cell: Cell,
     t_in: f32,
     s_in: f32,
@@ -332,6 +335,7 @@ impl<S: Copy> Walker<S> {
             skip_t: f32::NAN,
             tet: 0,
             f_in: 0,
+            pending: false,
             cell: Cell::EMPTY,
             t_in: 0.0,
             s_in: 0.0,
@@ -382,15 +386,21 @@ impl<S: Copy> Walker<S> {
     }
 
     /// One BVH query or one tetrahedron; returns whether the ray goes on.
+    ///
+    /// With `PREFETCH`, a step that moves on to the next tetrahedron only
+    /// prefetches its record, and the next step loads it: when the mesh
+    /// outgrows the caches, the steps of the other rays in flight run while
+    /// the record arrives. Without, the next cell is loaded at once (faster
+    /// while the mesh stays in the caches).
     #[inline(always)]
-    pub fn advance<I: SegmentIntegrator<Sample = S> + ?Sized>(
+    pub fn advance<const PREFETCH: bool, I: SegmentIntegrator<Sample = S> + ?Sized>(
         &mut self,
         scene: &Scene,
         integrator: &I,
         limits: WalkLimits,
     ) -> bool {
         match self.phase {
-            Phase::Walking => self.step(scene, integrator, limits),
+            Phase::Walking => self.step::<PREFETCH, I>(scene, integrator, limits),
             Phase::Entering => self.enter(scene, integrator),
             Phase::Done => {}
         }
@@ -426,6 +436,7 @@ impl<S: Copy> Walker<S> {
         self.tet = bf.tet as usize;
         self.f_in = usize::from(bf.local_face);
         self.cell = Cell::load(scene, &self.ray, scene.walk[self.tet].verts);
+        self.pending = false;
         self.t_in = hit.t.max(self.t_cursor);
         self.s_in = self.cell.crossing(self.f_in).1;
         self.sample_in = Some(integrator.sample(self.s_in));
@@ -434,12 +445,16 @@ impl<S: Copy> Walker<S> {
     }
 
     #[inline(always)]
-    fn step<I: SegmentIntegrator<Sample = S> + ?Sized>(
+    fn step<const PREFETCH: bool, I: SegmentIntegrator<Sample = S> + ?Sized>(
         &mut self,
         scene: &Scene,
         integrator: &I,
         limits: WalkLimits,
     ) {
+        if PREFETCH && self.pending {
+            self.pending = false;
+            self.cell = Cell::load(scene, &self.ray, scene.walk[self.tet].verts);
+        }
         let counters = &mut self.counters;
         counters.steps += 1;
         if counters.steps > limits.max_steps {
@@ -504,7 +519,13 @@ impl<S: Copy> Walker<S> {
         }
         self.tet = (next >> 2) as usize;
         self.f_in = (next & 3) as usize;
-        self.cell = Cell::load(scene, &self.ray, scene.walk[self.tet].verts);
+        let record = &scene.walk[self.tet];
+        if PREFETCH {
+            tetray_memory::prefetch(record);
+            self.pending = true;
+        } else {
+            self.cell = Cell::load(scene, &self.ray, record.verts);
+        }
     }
 }
 

@@ -1,4 +1,4 @@
-//! The `tetray` CLI's global allocator.
+//! [`Recycling`], the `tetray` CLI's global allocator.
 //!
 //! Loading a mesh is a sequence of large arrays, each built from the one
 //! before and then dropped: the file's bytes, the decoded connectivity, the
