@@ -1,10 +1,10 @@
 //! A hint to the cache: start loading a value that will be read soon.
 
 /// Asks the processor to bring the cache line holding `value` into all
-/// cache levels, without waiting for it. The CPU walk calls it on the next
-/// tetrahedron's record one step before it reads the record, so that the
-/// other rays in flight cover the load. A no-op where there is no such
-/// instruction.
+/// cache levels, without waiting for it. The CPU walk calls it on the
+/// records of the three cells a ray may enter next, at the start of the
+/// step that decides which, so the record is on its way while the step
+/// computes. A no-op where there is no such instruction.
 #[inline(always)]
 pub fn prefetch<T>(value: &T) {
     #[cfg(target_arch = "x86_64")]

@@ -263,7 +263,7 @@ pub(crate) struct Frame<'a, I: ?Sized> {
     progress: Option<&'a (dyn Fn(usize, usize) + Sync)>,
     rows_done: AtomicUsize,
     /// Whether the mesh is large enough to keep [`IN_FLIGHT_LARGE`] rays in
-    /// flight and prefetch their records (see [`LARGE_MESH_TETS`]).
+    /// flight and prefetch (see [`LARGE_MESH_TETS`]).
     large: bool,
     pub width: usize,
     pub height: usize,
@@ -309,8 +309,9 @@ const IN_FLIGHT_LARGE: usize = 8;
 /// Meshes from this many tetrahedra on keep [`IN_FLIGHT_LARGE`] rays in
 /// flight (alternating runs, 512 x 512: the 10 M torus shell 11% faster
 /// with 8 than with 4, the 1 M shell unchanged, the Blunt Fin 4-10% slower)
-/// and prefetch each ray's next record (40 M shell: 10.3-10.5 -> 16.8-17.2
-/// M segments/s; the 1 M shell and the Blunt Fin 15-25% slower with it).
+/// and prefetch the records of the cells each ray may enter next
+/// (alternating runs: 40 M shell 8.2-12.5 -> 13.3-17.3 M segments/s, 10 M
+/// 15.6-17.0 -> 21.3-21.5; the 1 M shell unchanged).
 const LARGE_MESH_TETS: usize = 2_000_000;
 
 /// Tile edge of the CPU ray caster (rows per parallel band).
@@ -366,8 +367,8 @@ impl<I: SegmentIntegrator + ?Sized> Frame<'_, I> {
         }
     }
 
-    /// [`Frame::band`] with `N` rays in flight, prefetching each ray's next
-    /// record or not (see [`Walker::advance`]).
+    /// [`Frame::band`] with `N` rays in flight, prefetching the records
+    /// they may enter next or not (see [`Walker::advance`]).
     fn band_with<const N: usize, const PREFETCH: bool>(
         &self,
         y0: usize,
@@ -419,7 +420,6 @@ impl<I: SegmentIntegrator + ?Sized> Frame<'_, I> {
         stats
     }
 }
-
 #[cfg(test)]
 mod tests {
     use glam::Vec3A;
@@ -446,8 +446,8 @@ mod tests {
         }
     }
 
-    /// The large-mesh walk (8 rays in flight, each next record prefetched
-    /// and loaded a step later) gives the small-mesh walk's image and
+    /// The large-mesh walk (8 rays in flight, the records of the cells a
+    /// ray may enter next prefetched) gives the small-mesh walk's image and
     /// counters bit for bit, on a mesh with a hole (re-entries) from
     /// outside and from inside.
     #[test]

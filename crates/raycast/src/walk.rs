@@ -307,9 +307,6 @@ pub(crate) struct Walker<S> {
     skip_t: f32,
     tet: usize,
     f_in: usize,
-    /// Whether `cell` is still to be loaded from `tet` (a prefetching walk
-    /// loads it at the start of the step that crosses it).
-    pending: bool,
     cell: Cell,
     t_in: f32,
     s_in: f32,
@@ -335,7 +332,6 @@ impl<S: Copy> Walker<S> {
             skip_t: f32::NAN,
             tet: 0,
             f_in: 0,
-            pending: false,
             cell: Cell::EMPTY,
             t_in: 0.0,
             s_in: 0.0,
@@ -387,11 +383,10 @@ impl<S: Copy> Walker<S> {
 
     /// One BVH query or one tetrahedron; returns whether the ray goes on.
     ///
-    /// With `PREFETCH`, a step that moves on to the next tetrahedron only
-    /// prefetches its record, and the next step loads it: when the mesh
-    /// outgrows the caches, the steps of the other rays in flight run while
-    /// the record arrives. Without, the next cell is loaded at once (faster
-    /// while the mesh stays in the caches).
+    /// With `PREFETCH`, each step first prefetches the records of the three
+    /// cells the ray may enter next, so that a mesh too large for the
+    /// caches costs less than a miss per step: the record arrives while the
+    /// step computes its exit and integrates.
     #[inline(always)]
     pub fn advance<const PREFETCH: bool, I: SegmentIntegrator<Sample = S> + ?Sized>(
         &mut self,
@@ -436,7 +431,6 @@ impl<S: Copy> Walker<S> {
         self.tet = bf.tet as usize;
         self.f_in = usize::from(bf.local_face);
         self.cell = Cell::load(scene, &self.ray, scene.walk[self.tet].verts);
-        self.pending = false;
         self.t_in = hit.t.max(self.t_cursor);
         self.s_in = self.cell.crossing(self.f_in).1;
         self.sample_in = Some(integrator.sample(self.s_in));
@@ -451,9 +445,18 @@ impl<S: Copy> Walker<S> {
         integrator: &I,
         limits: WalkLimits,
     ) {
-        if PREFETCH && self.pending {
-            self.pending = false;
-            self.cell = Cell::load(scene, &self.ray, scene.walk[self.tet].verts);
+        if PREFETCH {
+            // The next tetrahedron is one of the neighbours across the three
+            // other faces: their records start loading now, while this step
+            // computes its exit and integrates.
+            let record = &scene.walk[self.tet];
+            for (f, &next) in record.next.iter().enumerate() {
+                if f != self.f_in {
+                    if let Some(neighbour) = scene.walk.get((next >> 2) as usize) {
+                        tetray_memory::prefetch(neighbour);
+                    }
+                }
+            }
         }
         let counters = &mut self.counters;
         counters.steps += 1;
@@ -519,13 +522,7 @@ impl<S: Copy> Walker<S> {
         }
         self.tet = (next >> 2) as usize;
         self.f_in = (next & 3) as usize;
-        let record = &scene.walk[self.tet];
-        if PREFETCH {
-            tetray_memory::prefetch(record);
-            self.pending = true;
-        } else {
-            self.cell = Cell::load(scene, &self.ray, record.verts);
-        }
+        self.cell = Cell::load(scene, &self.ray, scene.walk[self.tet].verts);
     }
 }
 
