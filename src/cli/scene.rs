@@ -13,9 +13,13 @@ pub use tetray_frame::{plural, MeshInput, Setup};
 
 use super::args::{CameraArgs, IntegratorArgs, MeshArgs, RendererArg, WalkArgs};
 
-/// Loads the mesh the options name, or the embedded default.
+/// Loads the mesh the options name, or the embedded default, and gives
+/// back what the allocator kept of the load's temporaries (for commands
+/// that go on without building a scene from them: `info`, `view`, MPI).
 pub fn load_mesh(args: &MeshArgs) -> anyhow::Result<MeshInput> {
-    Ok(tetray_frame::load_mesh(&args.options())?)
+    let input = tetray_frame::load_mesh(&args.options());
+    crate::ALLOCATOR.release();
+    Ok(input?)
 }
 
 /// What [`prepare`] makes a frame of.
@@ -69,9 +73,9 @@ pub fn prepare(frame: FrameArgs<'_>, log: &dyn Fn(String)) -> anyhow::Result<Set
             &mesh, &options, log,
         )?);
     }
-    let input = load_mesh(frame.mesh)?;
+    // The scene is built in the blocks the load freed; then they go back.
+    let input = tetray_frame::load_mesh(&frame.mesh.options())?;
     let setup = tetray_frame::prepare(input, &options, log);
-    // The load's temporaries are gone: give back what the allocator kept.
     crate::ALLOCATOR.release();
     Ok(setup?)
 }
