@@ -130,6 +130,16 @@ impl Recycling {
         unmap(out);
     }
 
+    /// Keeps what follows the first `used` bytes of `block`, if anything.
+    fn keep_rest(&self, block: Block, used: usize) {
+        if block.len > used {
+            self.keep(Block {
+                addr: block.addr + used,
+                len: block.len - used,
+            });
+        }
+    }
+
     /// Maps `size` bytes (`size >= LARGE`): the smallest kept block that
     /// is long enough (the rest of it kept apart), or else a fresh mapping
     /// into which the kept blocks are moved, largest first, until it is
@@ -138,12 +148,7 @@ impl Recycling {
     fn alloc_large(&self, size: usize, zero: bool) -> *mut u8 {
         let len = page_round(size);
         if let Some(block) = self.take_fit(len) {
-            if block.len > len {
-                self.keep(Block {
-                    addr: block.addr + len,
-                    len: block.len - len,
-                });
-            }
+            self.keep_rest(block, len);
             let ptr = block.addr as *mut u8;
             if zero {
                 // SAFETY: `block` is a mapping of at least `len >= size`
@@ -169,12 +174,7 @@ impl Recycling {
                 unmap(block);
                 break;
             }
-            if block.len > n {
-                self.keep(Block {
-                    addr: block.addr + n,
-                    len: block.len - n,
-                });
-            }
+            self.keep_rest(block, n);
             if zero {
                 // SAFETY: `to .. to + n` is now the moved pages, inside
                 // the new allocation.

@@ -420,6 +420,7 @@ impl<I: SegmentIntegrator + ?Sized> Frame<'_, I> {
         stats
     }
 }
+
 #[cfg(test)]
 mod tests {
     use glam::Vec3A;
