@@ -5,10 +5,11 @@
 
 use glam::{Vec3, Vec3A};
 use tetray_boundary_bvh::reentry_start;
-use tetray_boundary_bvh::watertight::{crossing_barycentric, edge_sign, RayFrame, RayPoint};
-use tetray_integrate::fastmath::{clamp_f32, max_f32, min_f32};
+use tetray_boundary_bvh::watertight::RayFrame;
+use tetray_integrate::fastmath::max_f32;
 use tetray_mesh::FACE_VERTICES;
 
+use crate::face::{local_index, Face, Vertex};
 use crate::scene::{Scene, FINAL_EXIT};
 
 /// The light of one ray segment, front (nearer the eye) to back.
@@ -166,119 +167,6 @@ const fn bit_of(others: [usize; 3], code: usize, k: usize) -> bool {
     code & (1 << i) != 0
 }
 
-/// The current tetrahedron in the frame of the ray: per vertex its position
-/// across the ray (`x`, `y`, in f64 so that edge functions of f32
-/// projections are exact), its distance along the ray and its scalar.
-///
-/// All four vertices are projected anew at every step, lane-parallel:
-/// `project4` gives a point the same bits whatever its lane and whenever it
-/// is projected, so shared faces still agree exactly, and no bookkeeping of
-/// which vertices carry over is needed.
-#[derive(Clone, Copy)]
-struct Cell {
-    x: [f64; 4],
-    y: [f64; 4],
-    z: [f32; 4],
-    s: [f32; 4],
-}
-
-impl Cell {
-    const EMPTY: Cell = Cell {
-        x: [0.0; 4],
-        y: [0.0; 4],
-        z: [0.0; 4],
-        s: [0.0; 4],
-    };
-
-    #[inline(always)]
-    fn load(scene: &Scene, ray: &RayFrame, verts: [u32; 4]) -> Cell {
-        let q = verts.map(|v| scene.points[v as usize]);
-        let p = ray.project4(q.map(|q| Vec3::new(q[0], q[1], q[2])));
-        Cell {
-            x: p.map(|p| f64::from(p.x)),
-            y: p.map(|p| f64::from(p.y)),
-            z: p.map(|p| p.z),
-            s: q.map(|q| q[3]),
-        }
-    }
-
-    /// Edge function of the directed edge `a -> b` (exact in f64).
-    #[inline(always)]
-    fn edge(&self, a: usize, b: usize) -> f64 {
-        self.x[a] * self.y[b] - self.y[a] * self.x[b]
-    }
-
-    #[inline]
-    fn point(&self, i: usize) -> RayPoint {
-        RayPoint {
-            x: self.x[i] as f32,
-            y: self.y[i] as f32,
-            z: self.z[i],
-        }
-    }
-
-    /// Distance to and scalar at the crossing of face `f`.
-    #[inline]
-    fn crossing(&self, f: usize) -> (f32, f32) {
-        let [a, b, c] = FACE_VERTICES[f];
-        let (t, w) = crossing_barycentric(self.point(a), self.point(b), self.point(c));
-        let value =
-            w[0] * f64::from(self.s[a]) + w[1] * f64::from(self.s[b]) + w[2] * f64::from(self.s[c]);
-        (t, value as f32)
-    }
-
-    /// Leaves through the exit face of a cell entered through `f_in`:
-    /// `(face, distance, scalar)`, or `None` for a degenerate cell.
-    ///
-    /// The distance and weights are those of `crossing_barycentric` (the
-    /// edge functions normalised), reusing the two apex edge functions
-    /// computed for the signs.
-    #[inline(always)]
-    fn exit(&self, f_in: usize) -> Option<(usize, f32, f32)> {
-        let table = &APEX_TABLES[f_in];
-        let apex = f_in;
-        let mut e = [0.0f64; 4];
-        let mut code = 0;
-        for (i, &k) in table.others.iter().enumerate() {
-            e[k] = self.edge(apex, k);
-            // Exact zeros (the ray through an edge or vertex) take the
-            // symbolic perturbation's side.
-            let positive = if e[k] != 0.0 {
-                e[k] > 0.0
-            } else {
-                edge_sign(self.point(apex), self.point(k)) > 0
-            };
-            code |= usize::from(positive) << i;
-        }
-        let (f, next, prev) = table.exits[code]?;
-        // Weights of (apex, next, prev): each the edge function of the
-        // opposite edge, with ef(prev, apex) = -ef(apex, prev) exactly.
-        let w = [self.edge(next, prev), -e[prev], e[next]];
-        let z = [self.z[apex], self.z[next], self.z[prev]];
-        let s = [self.s[apex], self.s[next], self.s[prev]];
-        let lo = min_f32(min_f32(z[0], z[1]), z[2]);
-        let hi = max_f32(max_f32(z[0], z[1]), z[2]);
-        let sum = w[0] + w[1] + w[2];
-        if sum == 0.0 {
-            // The ray in the face's plane: any point of the face is the
-            // crossing; take the nearest vertex, as crossing_distance does.
-            let i = if lo == z[0] {
-                0
-            } else if lo == z[1] {
-                1
-            } else {
-                2
-            };
-            return Some((f, lo, s[i]));
-        }
-        let inv = 1.0 / sum;
-        let t = (w[0] * f64::from(z[0]) + w[1] * f64::from(z[1]) + w[2] * f64::from(z[2])) * inv;
-        let value =
-            (w[0] * f64::from(s[0]) + w[1] * f64::from(s[1]) + w[2] * f64::from(s[2])) * inv;
-        Some((f, clamp_f32(t as f32, lo, hi), value as f32))
-    }
-}
-
 /// Where a [`Walker`] is.
 #[derive(Clone, Copy, PartialEq, Eq)]
 enum Phase {
@@ -307,7 +195,7 @@ pub(crate) struct Walker<S> {
     skip_t: f32,
     tet: usize,
     f_in: usize,
-    cell: Cell,
+    face: Face,
     t_in: f32,
     s_in: f32,
     sample_in: Option<S>,
@@ -332,7 +220,7 @@ impl<S: Copy> Walker<S> {
             skip_t: f32::NAN,
             tet: 0,
             f_in: 0,
-            cell: Cell::EMPTY,
+            face: Face::EMPTY,
             t_in: 0.0,
             s_in: 0.0,
             sample_in: None,
@@ -430,9 +318,9 @@ impl<S: Copy> Walker<S> {
         };
         self.tet = bf.tet as usize;
         self.f_in = usize::from(bf.local_face);
-        self.cell = Cell::load(scene, &self.ray, scene.walk[self.tet].verts);
+        let verts = scene.walk[self.tet].verts;
+        (self.face, self.s_in) = Face::enter(&scene.points, &self.ray, verts, self.f_in);
         self.t_in = hit.t.max(self.t_cursor);
-        self.s_in = self.cell.crossing(self.f_in).1;
         self.sample_in = Some(integrator.sample(self.s_in));
         self.interval_depth = self.t_in.max(0.0);
         self.phase = Phase::Walking;
@@ -445,11 +333,11 @@ impl<S: Copy> Walker<S> {
         integrator: &I,
         limits: WalkLimits,
     ) {
+        let record = &scene.walk[self.tet];
         if PREFETCH {
             // The next tetrahedron is one of the neighbours across the three
             // other faces: their records start loading now, while this step
             // computes its exit and integrates.
-            let record = &scene.walk[self.tet];
             for (f, &next) in record.next.iter().enumerate() {
                 if f != self.f_in {
                     if let Some(neighbour) = scene.walk.get((next >> 2) as usize) {
@@ -465,7 +353,9 @@ impl<S: Copy> Walker<S> {
             self.phase = Phase::Done;
             return;
         }
-        let Some((f_out, t_exit, s_out)) = self.cell.exit(self.f_in) else {
+        // Of this cell only the vertex opposite the entry face is new.
+        let apex = Vertex::load(&scene.points, &self.ray, record.verts[self.f_in & 3]);
+        let Some((left_out, t_exit, s_out)) = self.face.exit(apex) else {
             // Only a degenerate (flat) tetrahedron has no exit face.
             counters.walk_failure = true;
             self.phase = Phase::Done;
@@ -505,7 +395,9 @@ impl<S: Copy> Walker<S> {
         self.t_in = t_out;
         self.s_in = s_out;
         self.sample_in = Some(sample_out);
-        let next = scene.walk[self.tet].next[f_out];
+        // The exit face is the one opposite the entry face's vertex it
+        // leaves out.
+        let next = record.next[local_index(record.verts, left_out)];
         if next >= FINAL_EXIT {
             // Left through the convex hull: nothing more to meet; otherwise
             // ask the BVH where the ray comes back.
@@ -522,7 +414,6 @@ impl<S: Copy> Walker<S> {
         }
         self.tet = (next >> 2) as usize;
         self.f_in = (next & 3) as usize;
-        self.cell = Cell::load(scene, &self.ray, scene.walk[self.tet].verts);
     }
 }
 
