@@ -181,5 +181,7 @@ impl Face {
 /// The local index in `verts` of point `id` (one of them).
 #[inline(always)]
 pub(crate) fn local_index(verts: [u32; 4], id: u32) -> usize {
-    usize::from(verts[1] == id) | usize::from(verts[2] == id) << 1 | usize::from(verts[3] == id) * 3
+    usize::from(verts[1] == id)
+        | (usize::from(verts[2] == id) << 1)
+        | (usize::from(verts[3] == id) * 3)
 }
