@@ -12,7 +12,7 @@
 //! vertex claims the ray exactly once. Rays therefore never leak between
 //! faces, never cross two at once and never loop.
 
-use glam::Vec3;
+use glam::{Vec3, Vec4};
 
 /// A point in the frame of one ray.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -168,6 +168,41 @@ pub fn crossing_barycentric(a: RayPoint, b: RayPoint, c: RayPoint) -> (f32, [f64
     let t = (wa * f64::from(a.z) + wb * f64::from(b.z) + wc * f64::from(c.z)) / sum;
     let inv = 1.0 / sum;
     ((t as f32).clamp(lo, hi), [wa * inv, wb * inv, wc * inv])
+}
+
+/// [`RayFrame::project`] for one point at a time in SIMD lanes: lane `i`
+/// of `columns[j]` is coordinate `j` of basis vector `i` (`u`, `v`, `dir`),
+/// so `columns[0] dx + columns[1] dy + columns[2] dz` makes, in lane `i`,
+/// the operations of `project`'s dot product in the same order: the same
+/// bits.
+#[derive(Debug, Clone, Copy)]
+pub struct Projector {
+    origin: Vec4,
+    columns: [Vec4; 3],
+}
+
+impl Projector {
+    pub fn new(ray: &RayFrame) -> Self {
+        let (u, v, w) = (ray.u, ray.v, ray.dir);
+        Self {
+            origin: ray.origin.extend(0.0),
+            columns: [
+                Vec4::new(u.x, v.x, w.x, 0.0),
+                Vec4::new(u.y, v.y, w.y, 0.0),
+                Vec4::new(u.z, v.z, w.z, 0.0),
+            ],
+        }
+    }
+
+    /// The projection `(x, y, z)` of the point `(p.x, p.y, p.z)` in lanes
+    /// 0 to 2 (lane 3 is not used).
+    #[inline(always)]
+    pub fn project(&self, p: Vec4) -> Vec4 {
+        let d = p - self.origin;
+        self.columns[0] * Vec4::splat(d.x)
+            + self.columns[1] * Vec4::splat(d.y)
+            + self.columns[2] * Vec4::splat(d.z)
+    }
 }
 
 impl RayFrame {

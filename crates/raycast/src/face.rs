@@ -8,8 +8,8 @@
 //! an edge function carried over has the bits it would have if computed
 //! anew: the walk is the one that projects every vertex of every cell.
 
-use glam::Vec3;
-use tetray_boundary_bvh::watertight::{crossing_barycentric, edge_sign, RayFrame, RayPoint};
+use glam::Vec4;
+use tetray_boundary_bvh::watertight::{crossing_barycentric, edge_sign, Projector, RayPoint};
 use tetray_integrate::fastmath::{clamp_f32, max_f32, min_f32};
 use tetray_mesh::FACE_VERTICES;
 
@@ -34,16 +34,16 @@ impl Vertex {
         id: 0,
     };
 
-    /// Point `id` (position and scalar) projected into `ray`'s frame.
+    /// Point `id` (position and scalar) projected into a ray's frame.
     #[inline(always)]
-    pub fn load(points: &[[f32; 4]], ray: &RayFrame, id: u32) -> Vertex {
-        let q = points[id as usize];
-        let p = ray.project(Vec3::new(q[0], q[1], q[2]));
+    pub fn load(points: &[[f32; 4]], ray: &Projector, id: u32) -> Vertex {
+        let q = Vec4::from_array(points[id as usize]);
+        let p = ray.project(q);
         Vertex {
             x: f64::from(p.x),
             y: f64::from(p.y),
             z: p.z,
-            s: q[3],
+            s: q.w,
             id,
         }
     }
@@ -109,7 +109,7 @@ impl Face {
     /// order, as for every face a ray enters through): the face, and the
     /// scalar at the crossing.
     #[inline]
-    pub fn enter(points: &[[f32; 4]], ray: &RayFrame, verts: [u32; 4], f: usize) -> (Face, f32) {
+    pub fn enter(points: &[[f32; 4]], ray: &Projector, verts: [u32; 4], f: usize) -> (Face, f32) {
         let [a, b, c] = FACE_VERTICES[f].map(|i| Vertex::load(points, ray, verts[i]));
         let (_, w) = crossing_barycentric(a.point(), b.point(), c.point());
         let value = w[0] * f64::from(a.s) + w[1] * f64::from(b.s) + w[2] * f64::from(c.s);

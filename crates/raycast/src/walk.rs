@@ -5,7 +5,7 @@
 
 use glam::{Vec3, Vec3A};
 use tetray_boundary_bvh::reentry_start;
-use tetray_boundary_bvh::watertight::RayFrame;
+use tetray_boundary_bvh::watertight::{Projector, RayFrame};
 use tetray_integrate::fastmath::max_f32;
 use tetray_mesh::FACE_VERTICES;
 
@@ -183,6 +183,8 @@ enum Phase {
 /// vertex indices, vertex positions; see [`Walker::advance`]).
 pub(crate) struct Walker<S> {
     ray: RayFrame,
+    /// `ray`'s projection, for the walk's vertices.
+    projector: Projector,
     phase: Phase,
     pub light: RayLight,
     pub counters: RayCounters,
@@ -212,6 +214,7 @@ impl<S: Copy> Walker<S> {
     pub fn new() -> Self {
         Walker {
             ray: RayFrame::new(Vec3::ZERO, Vec3::Z),
+            projector: Projector::new(&RayFrame::new(Vec3::ZERO, Vec3::Z)),
             phase: Phase::Done,
             light: RayLight::CLEAR,
             counters: RayCounters::default(),
@@ -259,6 +262,7 @@ impl<S: Copy> Walker<S> {
     /// and integrates only from distance 0).
     pub fn start(&mut self, ray: RayFrame, t_start: f32) {
         self.ray = ray;
+        self.projector = Projector::new(&ray);
         self.phase = Phase::Entering;
         self.light = RayLight::CLEAR;
         self.counters = RayCounters::default();
@@ -319,7 +323,7 @@ impl<S: Copy> Walker<S> {
         self.tet = bf.tet as usize;
         self.f_in = usize::from(bf.local_face);
         let verts = scene.walk[self.tet].verts;
-        (self.face, self.s_in) = Face::enter(&scene.points, &self.ray, verts, self.f_in);
+        (self.face, self.s_in) = Face::enter(&scene.points, &self.projector, verts, self.f_in);
         self.t_in = hit.t.max(self.t_cursor);
         self.sample_in = Some(integrator.sample(self.s_in));
         self.interval_depth = self.t_in.max(0.0);
@@ -354,7 +358,7 @@ impl<S: Copy> Walker<S> {
             return;
         }
         // Of this cell only the vertex opposite the entry face is new.
-        let apex = Vertex::load(&scene.points, &self.ray, record.verts[self.f_in & 3]);
+        let apex = Vertex::load(&scene.points, &self.projector, record.verts[self.f_in & 3]);
         let Some((left_out, t_exit, s_out)) = self.face.exit(apex) else {
             // Only a degenerate (flat) tetrahedron has no exit face.
             counters.walk_failure = true;
