@@ -37,7 +37,7 @@ pub struct GreyKnots {
 }
 
 /// A scalar classified against grey knots.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct GreySample {
     /// Luminance in `xyz`, the lane quantity in `w`.
     pub material: Vec4,

@@ -126,7 +126,7 @@ impl Reference {
 /// A whole segment between two classified scalars.
 pub trait SegmentKernel: Sync {
     /// What the kernel keeps of a classified scalar.
-    type Sample: Copy;
+    type Sample: Copy + Default;
     fn sample(&self, knots: &TfKnots, s: f32) -> Self::Sample;
     fn sample_near(&self, knots: &TfKnots, s: f32, near: &Self::Sample) -> Self::Sample;
     fn segment(

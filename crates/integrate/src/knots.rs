@@ -22,7 +22,7 @@ pub enum OpacityMode {
 }
 
 /// Material properties at one scalar.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Material {
     /// Luminance (RGB).
     pub lum: Vec3A,
@@ -52,7 +52,7 @@ pub struct Piece {
 /// A scalar classified against the knots: its interval (right-continuous,
 /// `-1` below the first knot) and its material, computed once per face a
 /// ray crosses and shared by the two segments that meet there.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct KnotSample {
     pub scalar: f32,
     pub interval: i32,

@@ -20,7 +20,7 @@ use crate::scene::{Scene, FINAL_EXIT};
 /// front of the next.
 pub trait SegmentIntegrator: Sync {
     /// What the integrator keeps of a scalar value.
-    type Sample: Copy;
+    type Sample: Copy + Default;
 
     /// Classifies the scalar `s`.
     fn sample(&self, s: f32) -> Self::Sample;
@@ -200,7 +200,8 @@ pub(crate) struct Walker<S> {
     face: Face,
     t_in: f32,
     s_in: f32,
-    sample_in: Option<S>,
+    /// The classified `s_in` (set on entry).
+    sample_in: S,
     /// Whether the ray's light is kept per interval ([`Walker::intervals`])
     /// instead of composited along the whole ray.
     split: bool,
@@ -210,7 +211,7 @@ pub(crate) struct Walker<S> {
     interval_segments: u64,
 }
 
-impl<S: Copy> Walker<S> {
+impl<S: Copy + Default> Walker<S> {
     pub fn new() -> Self {
         Walker {
             ray: RayFrame::new(Vec3::ZERO, Vec3::Z),
@@ -226,7 +227,7 @@ impl<S: Copy> Walker<S> {
             face: Face::EMPTY,
             t_in: 0.0,
             s_in: 0.0,
-            sample_in: None,
+            sample_in: S::default(),
             split: false,
             intervals: Vec::new(),
             interval_depth: 0.0,
@@ -325,7 +326,7 @@ impl<S: Copy> Walker<S> {
         let verts = scene.walk[self.tet].verts;
         (self.face, self.s_in) = Face::enter(&scene.points, &self.projector, verts, self.f_in);
         self.t_in = hit.t.max(self.t_cursor);
-        self.sample_in = Some(integrator.sample(self.s_in));
+        self.sample_in = integrator.sample(self.s_in);
         self.interval_depth = self.t_in.max(0.0);
         self.phase = Phase::Walking;
     }
@@ -366,9 +367,7 @@ impl<S: Copy> Walker<S> {
             return;
         };
         let (t_in, s_in) = (self.t_in, self.s_in);
-        let Some(sample_in) = self.sample_in else {
-            unreachable!("set on entry");
-        };
+        let sample_in = self.sample_in;
         let t_out = max_f32(t_exit, t_in);
         let sample_out = integrator.sample_near(s_out, &sample_in);
         if t_out > t_in {
@@ -398,7 +397,7 @@ impl<S: Copy> Walker<S> {
         }
         self.t_in = t_out;
         self.s_in = s_out;
-        self.sample_in = Some(sample_out);
+        self.sample_in = sample_out;
         // The exit face is the one opposite the entry face's vertex it
         // leaves out.
         let next = record.next[local_index(record.verts, left_out)];
