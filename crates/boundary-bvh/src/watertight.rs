@@ -204,22 +204,3 @@ impl Projector {
             + self.columns[2] * Vec4::splat(d.z)
     }
 }
-
-impl RayFrame {
-    /// [`RayFrame::project`] of four points at once, lane-parallel (the same
-    /// operations in the same order per point, so the same bits).
-    #[inline]
-    pub fn project4(&self, p: [Vec3; 4]) -> [RayPoint; 4] {
-        let o = self.origin;
-        let dx = glam::Vec4::new(p[0].x, p[1].x, p[2].x, p[3].x) - o.x;
-        let dy = glam::Vec4::new(p[0].y, p[1].y, p[2].y, p[3].y) - o.y;
-        let dz = glam::Vec4::new(p[0].z, p[1].z, p[2].z, p[3].z) - o.z;
-        let along = |a: Vec3| dx * a.x + dy * a.y + dz * a.z;
-        let (x, y, z) = (along(self.u), along(self.v), along(self.dir));
-        std::array::from_fn(|i| RayPoint {
-            x: x[i],
-            y: y[i],
-            z: z[i],
-        })
-    }
-}

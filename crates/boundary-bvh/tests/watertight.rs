@@ -8,7 +8,7 @@ use glam::{DVec2, Vec3};
 use support::meshes::cases;
 use support::rays::{grid_queries, random_queries};
 use support::{line_crossings, topology, Rng};
-use tetray_boundary_bvh::watertight::RayFrame;
+use tetray_boundary_bvh::watertight::{Projector, RayFrame};
 use tetray_mesh::{TetMesh, Topology};
 
 fn counts(mesh: &TetMesh, topo: &Topology, ray: &RayFrame) -> (usize, usize) {
@@ -136,5 +136,34 @@ fn shared_vertices_and_edges_are_claimed_exactly_once() {
             "{}: only {shared} lines through shared points",
             case.name
         );
+    }
+}
+
+/// The walk projects its vertices with a `Projector` and the BVH with
+/// `RayFrame::project`: both must give a point the same bits, or a face's
+/// crossing would depend on who computed it.
+#[test]
+fn projector_gives_the_frame_projection_bits() {
+    let mut rng = Rng::new(5);
+    for case in cases() {
+        for q in random_queries(&case.mesh, 200, &mut rng) {
+            let projector = Projector::new(&q.ray);
+            for _ in 0..20 {
+                let p = Vec3::new(
+                    rng.range(-1e3, 1e3),
+                    rng.range(-1.0, 1.0),
+                    rng.range(-1e-3, 1e-3),
+                ) * rng.range(0.0, 2.0);
+                let want = q.ray.project(p);
+                let got = projector.project(p.extend(rng.unit()));
+                assert_eq!(
+                    [got.x, got.y, got.z].map(f32::to_bits),
+                    [want.x, want.y, want.z].map(f32::to_bits),
+                    "{}: {p} on {:?}",
+                    case.name,
+                    q.ray
+                );
+            }
+        }
     }
 }
