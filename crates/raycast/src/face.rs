@@ -185,3 +185,88 @@ pub(crate) fn local_index(verts: [u32; 4], id: u32) -> usize {
         | (usize::from(verts[2] == id) << 1)
         | (usize::from(verts[3] == id) * 3)
 }
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec3;
+    use tetray_boundary_bvh::watertight::{cross_triangle, RayFrame};
+
+    use super::*;
+
+    struct Rng(u32);
+
+    impl Rng {
+        fn unit(&mut self) -> f32 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 17;
+            self.0 ^= self.0 << 5;
+            self.0 as f32 / u32::MAX as f32
+        }
+    }
+
+    /// Random tetrahedra, each entered through a random face by a ray aimed
+    /// at a random interior point: the face the carried-face exit leaves
+    /// through is the one face the shared predicate says the ray leaves
+    /// through, and the new entry face's edges are those of that face.
+    #[test]
+    fn the_exit_is_the_face_the_ray_leaves_through() {
+        let mut rng = Rng(0x2545_f491);
+        let mut checked = 0;
+        for _ in 0..20_000 {
+            let mut p: [Vec3; 4] =
+                std::array::from_fn(|_| Vec3::new(rng.unit(), rng.unit(), rng.unit()) * 2.0 - 1.0);
+            let f = ((rng.unit() * 4.0) as usize).min(3);
+            let [i, j, k] = FACE_VERTICES[f];
+            let weights = [rng.unit(), rng.unit(), rng.unit()];
+            let sum = weights[0] + weights[1] + weights[2];
+            let on_face = (p[i] * weights[0] + p[j] * weights[1] + p[k] * weights[2]) / sum;
+            let inside = (p[0] + p[1] + p[2] + p[3]) * 0.25;
+            let ray = RayFrame::new(on_face - (inside - on_face) * 3.0, inside - on_face);
+            let crossing = |p: &[Vec3; 4], g: usize| {
+                let [a, b, c] = FACE_VERTICES[g].map(|v| ray.project(p[v]));
+                cross_triangle(a, b, c)
+            };
+            if !crossing(&p, f).is_some_and(|c| c.entering) {
+                // Negatively oriented: swapping two of face f's vertices
+                // keeps the face and turns the tetrahedron over.
+                p.swap(i, j);
+                if !crossing(&p, f).is_some_and(|c| c.entering) {
+                    continue;
+                }
+            }
+            let leaving: Vec<usize> = (0..4)
+                .filter(|&g| g != f && crossing(&p, g).is_some_and(|c| !c.entering))
+                .collect();
+            let [exit] = leaving[..] else {
+                continue;
+            };
+            let points: Vec<[f32; 4]> = p.iter().map(|v| [v.x, v.y, v.z, v.x]).collect();
+            let projector = Projector::new(&ray);
+            let (mut face, _) = Face::enter(&points, &projector, [0, 1, 2, 3], f);
+            let apex = Vertex::load(&points, &projector, f as u32);
+            let Some((left_out, t, _)) = face.exit(apex) else {
+                panic!("no exit from {p:?} entered through {f}");
+            };
+            // The face opposite vertex g is face g.
+            assert_eq!(left_out as usize, exit, "{p:?} entered through {f}");
+            let z = FACE_VERTICES[exit].map(|v| ray.project(p[v]).z);
+            assert!(t >= z[0].min(z[1]).min(z[2]) && t <= z[0].max(z[1]).max(z[2]));
+            // The carried face is the exit face, every edge positive.
+            for s in 0..3 {
+                let (a, b) = (face.v[s], face.v[(s + 1) % 3]);
+                assert_eq!(face.edge[s].to_bits(), a.edge(&b).to_bits());
+                assert!(a.positive(&b, face.edge[s]), "{p:?} entered through {f}");
+            }
+            checked += 1;
+        }
+        assert!(checked > 15_000, "only {checked} tetrahedra checked");
+    }
+
+    #[test]
+    fn local_index_finds_each_vertex() {
+        let verts = [7, 3, 11, 5];
+        for (i, &v) in verts.iter().enumerate() {
+            assert_eq!(local_index(verts, v), i);
+        }
+    }
+}
