@@ -83,8 +83,10 @@ pub(crate) struct Interval {
     pub light: RayLight,
 }
 
-/// For apex `a` (the vertex opposite the entry face): its three other
-/// vertices in increasing order, and for each pattern of the signs of the
+/// The GPU kernel's exit table, in the tetrahedron's local numbering (the
+/// CPU walk keeps the entry face in the ray's own cyclic order instead:
+/// [`crate::face`]). For apex `a` (the vertex opposite the entry face): its
+/// three other vertices in increasing order, and for each pattern of the signs of the
 /// edges apex -> k (bit `i` set when the edge to the `i`-th of them is
 /// positive) the exit face with the vertices following and preceding the
 /// apex in that face's counter-clockwise order, or `None` (all signs equal:
