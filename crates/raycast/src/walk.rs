@@ -215,9 +215,10 @@ pub(crate) struct Walker<S> {
 
 impl<S: Copy + Default> Walker<S> {
     pub fn new() -> Self {
+        let ray = RayFrame::new(Vec3::ZERO, Vec3::Z);
         Walker {
-            ray: RayFrame::new(Vec3::ZERO, Vec3::Z),
-            projector: Projector::new(&RayFrame::new(Vec3::ZERO, Vec3::Z)),
+            ray,
+            projector: Projector::new(&ray),
             phase: Phase::Done,
             light: RayLight::CLEAR,
             counters: RayCounters::default(),
