@@ -345,13 +345,14 @@ impl<S: Copy + Default> Walker<S> {
         if PREFETCH {
             // The next tetrahedron is one of the neighbours across the three
             // other faces: their records start loading now, while this step
-            // computes its exit and integrates.
-            for (f, &next) in record.next.iter().enumerate() {
-                if f != self.f_in {
-                    if let Some(neighbour) = scene.walk.get((next >> 2) as usize) {
-                        tetray_memory::prefetch(neighbour);
-                    }
-                }
+            // computes its exit and integrates. All four are asked for (the
+            // one the ray came from is cached already), and a boundary
+            // marker asks for the last record: no branch on which face is
+            // which, whose outcome is as good as random.
+            let last = scene.walk.len() - 1;
+            for &next in &record.next {
+                let index = ((next >> 2) as usize).min(last);
+                tetray_memory::prefetch(&scene.walk[index]);
             }
         }
         let counters = &mut self.counters;
