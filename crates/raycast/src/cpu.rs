@@ -308,11 +308,15 @@ const IN_FLIGHT: usize = 4;
 const IN_FLIGHT_LARGE: usize = 8;
 /// Meshes from this many tetrahedra on keep [`IN_FLIGHT_LARGE`] rays in
 /// flight (alternating runs, 512 x 512: the 10 M torus shell 11% faster
-/// with 8 than with 4, the 1 M shell unchanged, the Blunt Fin 4-10% slower)
-/// and prefetch the records of the cells each ray may enter next
-/// (alternating runs: 40 M shell 8.2-12.5 -> 13.3-17.3 M segments/s, 10 M
-/// 15.6-17.0 -> 21.3-21.5; the 1 M shell unchanged).
-const LARGE_MESH_TETS: usize = 2_000_000;
+/// with 8 than with 4) and prefetch the records of the cells each ray may
+/// enter next (alternating runs: 40 M shell 8.2-12.5 -> 13.3-17.3 M
+/// segments/s, 10 M 15.6-17.0 -> 21.3-21.5). Since the walk carries its
+/// entry face and prefetches without branching, the 1 M shell gains too
+/// (8 alternating rounds: 17.0-24.5 -> 22.6-28.8 M segments/s, faster in
+/// 7); on the Blunt Fin (187 k) the two are within noise (10 rounds,
+/// min / median 159.5 / 182.0 against 156.3 / 175.4 ms), as they were
+/// 4-10% slower there with the walk before.
+const LARGE_MESH_TETS: usize = 500_000;
 
 /// Tile edge of the CPU ray caster (rows per parallel band).
 pub(crate) const BAND_ROWS: usize = TILE;
