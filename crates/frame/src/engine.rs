@@ -168,6 +168,12 @@ impl Engine {
     /// The device the frames run on.
     pub fn adapter(&self) -> String {
         match self {
+            // The ray caster's walk runs as compiled for x86-64-v3 where
+            // the CPU has it; shear-warp runs the baseline build.
+            Engine::Cpu if tetray_raycast::wide_cpu() => format!(
+                "cpu (rayon, x86-64-v3), {} threads",
+                rayon::current_num_threads()
+            ),
             Engine::Cpu | Engine::ShearWarp(_) => {
                 format!("cpu (rayon), {} threads", rayon::current_num_threads())
             }

@@ -23,7 +23,7 @@ mod walk;
 pub use camera::{relative_to_origin, Camera, CameraError, PixelRays, ViewBasis};
 pub use cpu::{
     render_cpu, render_cpu_with_progress, render_scalar, render_scalar_with_progress, trace_pixel,
-    RayTrace, RenderError, RenderOptions, RenderOutput, RenderStats,
+    wide_cpu, RayTrace, RenderError, RenderOptions, RenderOutput, RenderStats,
 };
 pub use fragment::{render_fragments, render_scalar_fragments, Fragment, FragmentOutput};
 pub use image::{Image, ImageError};
