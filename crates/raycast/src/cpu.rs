@@ -379,23 +379,14 @@ impl<I: SegmentIntegrator + ?Sized> Frame<'_, I> {
         tetray_wide::run(
             self.wide,
             #[inline(always)]
-            || self.band_either(y0, band_rows, new_walker, finish),
+            || {
+                if self.large {
+                    self.band_with::<IN_FLIGHT_LARGE, true>(y0, band_rows, new_walker, finish)
+                } else {
+                    self.band_with::<IN_FLIGHT, false>(y0, band_rows, new_walker, finish)
+                }
+            },
         )
-    }
-
-    #[inline(always)]
-    fn band_either(
-        &self,
-        y0: usize,
-        band_rows: usize,
-        new_walker: fn() -> Walker<I::Sample>,
-        finish: impl FnMut(&mut Walker<I::Sample>, usize),
-    ) -> RenderStats {
-        if self.large {
-            self.band_with::<IN_FLIGHT_LARGE, true>(y0, band_rows, new_walker, finish)
-        } else {
-            self.band_with::<IN_FLIGHT, false>(y0, band_rows, new_walker, finish)
-        }
     }
 
     /// [`Frame::band`] with `N` rays in flight, prefetching the records
@@ -481,8 +472,8 @@ mod tests {
 
     /// The large-mesh walk (8 rays in flight, the records of the cells a
     /// ray may enter next prefetched) and the x86-64-v3 build of either
-    /// give the small-mesh walk's image and counters bit for bit, on a mesh with a hole (re-entries) from
-    /// outside and from inside.
+    /// give the small-mesh walk's image and counters bit for bit, on a
+    /// mesh with a hole (re-entries) from outside and from inside.
     #[test]
     fn prefetching_walk_gives_the_same_bits() {
         let (lo, hi) = (Vec3::ZERO, Vec3::ONE);
