@@ -4,6 +4,8 @@
 //! clamp by plain comparisons for the inner loops: `f32::min`, `max` and
 //! `clamp` spend three more instructions per call on NaN handling.
 
+use glam::Vec4;
+
 /// `1 / ln 2`, and `ln 2` split so that `k * LN2_HI` is exact for |k| < 2^10.
 const LOG2_E: f32 = std::f32::consts::LOG2_E;
 const LN2_HI: f32 = 0.693_145_75;
@@ -34,6 +36,57 @@ pub fn exp_f32(x: f32) -> f32 {
     // 2^k by building the exponent bits (k in [-126, 127] here).
     let k = kf as i32;
     p * f32::from_bits(((k + 127) as u32) << 23)
+}
+
+/// [`exp_f32`] without a branch, the same bits for every input: the
+/// polynomial runs for every `x` and the out-of-range results are selected
+/// after it, so that a loop of these over several segments vectorizes.
+#[inline(always)]
+pub fn exp_f32_select(x: f32) -> f32 {
+    let rounded = x * LOG2_E + ROUNDER;
+    let kf = rounded - ROUNDER;
+    let r = (x - kf * LN2_HI) - kf * LN2_LO;
+    let p = 1.0
+        + r * (1.0
+            + r * (0.5
+                + r * (1.0 / 6.0
+                    + r * (1.0 / 24.0
+                        + r * (1.0 / 120.0 + r * (1.0 / 720.0 + r * (1.0 / 5040.0)))))));
+    // `k` from the low bits of the rounded sum, as `kf as i32` for the `x`
+    // in range (|k| < 2^22), with no float-to-int conversion; out of range
+    // the bits are anything and the result is replaced below.
+    let k = rounded.to_bits().wrapping_sub(ROUNDER.to_bits());
+    let v = p * f32::from_bits(k.wrapping_add(127) << 23);
+    let v = if x > 88.0 { f32::INFINITY } else { v };
+    if x < -87.0 {
+        0.0
+    } else {
+        v
+    }
+}
+
+/// `f` of the lanes of `a` and `b`, four at a time in a `Vec4` (SSE or
+/// AVX operations, whatever the compiler makes of plain loops; a last
+/// partial group is padded with zeros).
+#[inline(always)]
+pub fn by_fours<const N: usize>(
+    a: &[f32; N],
+    b: &[f32; N],
+    f: impl Fn(Vec4, Vec4) -> Vec4,
+) -> [f32; N] {
+    let mut out = [0.0; N];
+    for start in (0..N).step_by(4) {
+        let four = |v: &[f32; N]| {
+            Vec4::from_array(std::array::from_fn(|k| {
+                v.get(start + k).copied().unwrap_or(0.0)
+            }))
+        };
+        let result = f(four(a), four(b)).to_array();
+        for (o, r) in out[start..].iter_mut().zip(result) {
+            *o = r;
+        }
+    }
+    out
 }
 
 /// The smaller of `a` and `b` by one comparison (`a` when they are
@@ -93,6 +146,33 @@ mod tests {
         assert_eq!(exp_f32(-100.0), 0.0);
         assert_eq!(exp_f32(100.0), f32::INFINITY);
         assert!(exp_f32(f32::NAN).is_nan());
+    }
+
+    #[test]
+    fn the_branch_free_exponential_gives_the_same_bits() {
+        let mut x = vec![
+            0.0f32,
+            -0.0,
+            -87.0,
+            -87.000_01,
+            88.0,
+            88.000_01,
+            -1e30,
+            1e30,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+            f32::MIN_POSITIVE,
+        ];
+        let n = 400_000;
+        x.extend((0..=n).map(|i| (-100.0 + 200.0 * (i as f64 / n as f64)) as f32));
+        for x in x {
+            assert_eq!(
+                exp_f32_select(x).to_bits(),
+                exp_f32(x).to_bits(),
+                "exp({x})"
+            );
+        }
     }
 
     #[test]

@@ -15,16 +15,27 @@ use crate::exact::exact_weights;
 use crate::grey::{GreyKnots, GreySample};
 use crate::knots::{KnotSample, Material, TfKnots};
 use crate::opacity::{lin_avg_opacity_weights, lin_opacity_weights};
-use crate::ppi::ppi_weights;
+use crate::ppi::{ppi_weights, ppi_weights_lanes};
 use crate::preintegrated::PreintegrationTable;
 use crate::psi::PsiTable;
 use crate::reference;
-use crate::segment::{light_from_weights, SegmentLight, Weights};
+use crate::segment::{light_from_weights, SampledSegment, SegmentLight, Weights};
 
 /// Per-channel weights of eq. 5.5 from the end values of the method's
 /// quantity (`tau D` or opacity) at the back and front.
 pub trait WeightKernel: Sync {
     fn weights(&self, back: f32, front: f32, length: f32) -> Weights;
+    /// [`WeightKernel::weights`] of `N` segments at once, the same bits per
+    /// lane (a kernel may compute its lanes as vector arithmetic).
+    #[inline(always)]
+    fn weights_lanes<const N: usize>(
+        &self,
+        back: &[f32; N],
+        front: &[f32; N],
+        length: &[f32; N],
+    ) -> [Weights; N] {
+        std::array::from_fn(|i| self.weights(back[i], front[i], length[i]))
+    }
     /// Whether the quantity is the attenuation (multiplied by the length
     /// before `weights`) or the opacity.
     const TAU: bool;
@@ -64,6 +75,15 @@ impl WeightKernel for Ppi<'_> {
     #[inline(always)]
     fn weights(&self, a: f32, b: f32, _length: f32) -> Weights {
         ppi_weights(self.table, a, b)
+    }
+    #[inline(always)]
+    fn weights_lanes<const N: usize>(
+        &self,
+        back: &[f32; N],
+        front: &[f32; N],
+        _length: &[f32; N],
+    ) -> [Weights; N] {
+        ppi_weights_lanes(self.table, back, front)
     }
 }
 
@@ -136,6 +156,32 @@ pub trait SegmentKernel: Sync {
         back: &Self::Sample,
         length: f32,
     ) -> SegmentLight;
+    /// The light of `N` segments, one per ray in flight: lane `i` as
+    /// [`Typed::integrate_samples`] would give it where bit `i` of `live` is
+    /// set, anything elsewhere. A kernel may integrate its lanes together.
+    #[inline(always)]
+    fn segments<const N: usize>(
+        &self,
+        knots: &TfKnots,
+        batch: &[SampledSegment<Self::Sample>; N],
+        live: u32,
+    ) -> [SegmentLight; N] {
+        std::array::from_fn(|i| {
+            let s = &batch[i];
+            if live >> i & 1 == 0 || !carries_material(s.length) {
+                SegmentLight::CLEAR
+            } else {
+                self.segment(knots, &s.front, &s.back, s.length)
+            }
+        })
+    }
+}
+
+/// Whether a segment of this length has material: zero, negative and NaN
+/// lengths carry none.
+#[inline(always)]
+fn carries_material(length: f32) -> bool {
+    !(length.is_nan() || length <= 0.0)
 }
 
 /// A weight kernel on grey knots: pieces cut at the knots (section 4.3)
@@ -187,6 +233,38 @@ impl<W: WeightKernel> SegmentKernel for Grey<'_, W> {
             light = light.then(self.piece(f, b, d));
         });
         light
+    }
+
+    /// The weights of every lane at once, as one piece each; the rare lane
+    /// that crosses a knot is then integrated alone, piece by piece.
+    #[inline(always)]
+    fn segments<const N: usize>(
+        &self,
+        knots: &TfKnots,
+        batch: &[SampledSegment<GreySample>; N],
+        live: u32,
+    ) -> [SegmentLight; N] {
+        let scale = |i: usize| if W::TAU { batch[i].length } else { 1.0 };
+        let back: [f32; N] = std::array::from_fn(|i| batch[i].back.material.w * scale(i));
+        let front: [f32; N] = std::array::from_fn(|i| batch[i].front.material.w * scale(i));
+        let length = batch.map(|s| s.length);
+        let weights = self.kernel.weights_lanes(&back, &front, &length);
+        // Every lane's light, live or not, so that the lanes' arithmetic
+        // stays in vectors; then the rare lane without material or across
+        // a knot is redone alone.
+        let mut lights: [SegmentLight; N] =
+            std::array::from_fn(|i| weights[i].light(batch[i].back.lum(), batch[i].front.lum()));
+        for (i, (light, s)) in lights.iter_mut().zip(batch).enumerate() {
+            let one_piece = s.front.interval == s.back.interval || !self.split;
+            if live >> i & 1 != 0 && !(one_piece && carries_material(s.length)) {
+                *light = if carries_material(s.length) {
+                    self.segment(knots, &s.front, &s.back, s.length)
+                } else {
+                    SegmentLight::CLEAR
+                };
+            }
+        }
+        lights
     }
 }
 
@@ -383,10 +461,21 @@ impl<K: SegmentKernel> Typed<'_, K> {
         back: &K::Sample,
         length: f32,
     ) -> SegmentLight {
-        if length.is_nan() || length <= 0.0 {
+        if !carries_material(length) {
             return SegmentLight::CLEAR;
         }
         self.kernel.segment(self.knots, front, back, length)
+    }
+
+    /// [`Typed::integrate_samples`] of the segments of several rays at
+    /// once: lane `i` where bit `i` of `live` is set, anything elsewhere.
+    #[inline(always)]
+    pub fn integrate_batch<const N: usize>(
+        &self,
+        batch: &[SampledSegment<K::Sample>; N],
+        live: u32,
+    ) -> [SegmentLight; N] {
+        self.kernel.segments(self.knots, batch, live)
     }
 }
 

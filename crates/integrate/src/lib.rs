@@ -49,5 +49,5 @@ pub use method::{Method, Model, UnknownMethod};
 pub use preintegrated::PreintegrationTable;
 pub use psi::{GammaSpacing, PsiTable};
 pub use scalar::{IntegratorOptions, ScalarIntegrator};
-pub use segment::{OpacityParams, SegmentLight, SegmentParams, Weights};
+pub use segment::{OpacityParams, SampledSegment, SegmentLight, SegmentParams, Weights};
 pub use tf::{ColorPoint, OpacityPoint, TfError, TransferFunction};

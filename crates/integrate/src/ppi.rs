@@ -2,7 +2,9 @@
 //! `zeta = exp(-(tau_b D + tau_f D)/2)` (eq. 5.6) and Psi looked up in the
 //! table of [`crate::psi::PsiTable`].
 
-use crate::fastmath::{clamp_f32, exp_f32};
+use glam::Vec4;
+
+use crate::fastmath::{by_fours, clamp_f32, exp_f32, exp_f32_select};
 use crate::psi::PsiTable;
 use crate::segment::{light_from_weights, SegmentLight, SegmentParams, Weights};
 
@@ -17,6 +19,29 @@ pub fn ppi_weights(table: &PsiTable, tau_d_back: f32, tau_d_front: f32) -> Weigh
     Weights { zeta, psi }
 }
 
+/// [`ppi_weights`] of `N` segments at once, the same bits per lane: the
+/// exponentials and table coordinates of all lanes as vector arithmetic.
+#[inline(always)]
+pub fn ppi_weights_lanes<const N: usize>(
+    table: &PsiTable,
+    tau_d_back: &[f32; N],
+    tau_d_front: &[f32; N],
+) -> [Weights; N] {
+    let mut zeta = [0.0f32; N];
+    for ((z, &b), &f) in zeta.iter_mut().zip(tau_d_back).zip(tau_d_front) {
+        *z = exp_f32_select(-0.5 * (b + f));
+    }
+    let psi = table.lookup_lanes(tau_d_back, tau_d_front);
+    // `clamp_f32(psi, zeta, 1)` as the SSE max and min (each the second
+    // operand when unordered): the same bits whenever `zeta <= 1`, which
+    // non-negative attenuations guarantee.
+    let psi = by_fours(&zeta, &psi, |zeta, psi| Vec4::ONE.min(zeta.max(psi)));
+    std::array::from_fn(|i| Weights {
+        zeta: zeta[i],
+        psi: psi[i],
+    })
+}
+
 /// The light of one segment by partial pre-integration.
 pub fn ppi_segment(table: &PsiTable, p: &SegmentParams) -> SegmentLight {
     let d = p.length;
@@ -27,4 +52,45 @@ pub fn ppi_segment(table: &PsiTable, p: &SegmentParams) -> SegmentLight {
         (p.tau_front * d).into(),
         |a, b| ppi_weights(table, a, b),
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::psi::GammaSpacing;
+
+    /// The lanes give each segment's single-segment weights to the bit, over
+    /// the attenuations a walk produces (`tau D >= 0`, up to infinity) and
+    /// NaN, with both table spacings.
+    #[test]
+    fn lanes_give_the_single_segment_bits() {
+        let mut values = vec![0.0f32, 1e-30, 1e-7, 0.5, 1.0, 87.0, 200.0, 1e30];
+        values.extend([f32::INFINITY, f32::NAN]);
+        let mut state = 0x2545_f491_u32;
+        for _ in 0..4000 {
+            state ^= state << 13;
+            state ^= state >> 17;
+            state ^= state << 5;
+            // Non-negative finite floats up to about 2^7.
+            values.push(f32::from_bits(state % 0x4300_0000));
+        }
+        for spacing in [GammaSpacing::Uniform, GammaSpacing::Quadratic] {
+            let table = PsiTable::build(64, spacing).expect("table");
+            for (k, back) in values.chunks_exact(16).enumerate() {
+                let back: [f32; 16] = back.try_into().expect("16 lanes");
+                let front = std::array::from_fn(|i| values[(k * 11 + i * 7 + 3) % values.len()]);
+                let lanes = ppi_weights_lanes(&table, &back, &front);
+                for i in 0..16 {
+                    let single = ppi_weights(&table, back[i], front[i]);
+                    assert_eq!(
+                        (lanes[i].zeta.to_bits(), lanes[i].psi.to_bits()),
+                        (single.zeta.to_bits(), single.psi.to_bits()),
+                        "{spacing:?} at ({}, {})",
+                        back[i],
+                        front[i]
+                    );
+                }
+            }
+        }
+    }
 }

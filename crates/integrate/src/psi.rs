@@ -15,6 +15,7 @@ use std::sync::{Arc, Mutex, OnceLock};
 use glam::Vec4;
 use rayon::prelude::*;
 
+use crate::fastmath::by_fours;
 use crate::special::gauss_legendre_panel;
 use crate::IntegrateError;
 
@@ -245,6 +246,55 @@ impl PsiTable {
         self.interpolate(x.x, x.y)
     }
 
+    /// [`PsiTable::lookup`] of `N` segments at once, lane by lane with its
+    /// operations (so its bits), written as loops over the lanes so that
+    /// the coordinates vectorize; the four table reads per lane are scalar.
+    #[inline(always)]
+    pub fn lookup_lanes<const N: usize>(
+        &self,
+        tau_d_back: &[f32; N],
+        tau_d_front: &[f32; N],
+    ) -> [f32; N] {
+        let x = self.coords(tau_d_back);
+        let y = self.coords(tau_d_front);
+        let (i, fx) = cells(&x, self.last_cell);
+        let (j, fy) = cells(&y, self.last_cell);
+        let n = self.size;
+        // The four nodes of each lane's cell. Cells are at most
+        // `last_cell = n - 2` on both axes, so the last node read is at
+        // most `n^2 - 1`: the bound below never moves a read, it only lets
+        // the reads go unchecked.
+        let last_base = self.values.len().saturating_sub(n + 2);
+        let mut base = [0usize; N];
+        for k in 0..N {
+            base[k] = (j[k] as usize * n + i[k] as usize).min(last_base);
+        }
+        let node =
+            |offset: usize| -> [f32; N] { std::array::from_fn(|k| self.values[base[k] + offset]) };
+        let near = [node(0), node(1)];
+        let far = [node(n), node(n + 1)];
+        let mut out = [0.0; N];
+        for k in 0..N {
+            let bottom = near[0][k] + (near[1][k] - near[0][k]) * fx[k];
+            let top = far[0][k] + (far[1][k] - far[0][k]) * fx[k];
+            out[k] = bottom + (top - bottom) * fy[k];
+        }
+        out
+    }
+
+    /// The node coordinates of `lookup`, per lane, with its operations.
+    #[inline(always)]
+    fn coords<const N: usize>(&self, tau_d: &[f32; N]) -> [f32; N] {
+        let (one, last) = (Vec4::ONE, self.last);
+        let u = match self.spacing {
+            GammaSpacing::Uniform => by_fours(tau_d, tau_d, |t, _| one - (one + t).recip()),
+            GammaSpacing::Quadratic => {
+                by_fours(tau_d, tau_d, |t, _| one - (one + t).sqrt().recip())
+            }
+        };
+        by_fours(&u, &u, |u, _| one.min(Vec4::ZERO.max(u)) * last)
+    }
+
     /// Bilinear lookup by `(gamma_b, gamma_f)` in `[0, 1]`.
     pub fn lookup_gamma(&self, gamma_back: f32, gamma_front: f32) -> f32 {
         self.bilinear(
@@ -310,6 +360,22 @@ fn cell(x: f32, last_cell: u32) -> (u32, f32) {
     (i, x - i as f32)
 }
 
+/// [`cell`] of each lane.
+#[inline(always)]
+fn cells<const N: usize>(x: &[f32; N], last_cell: u32) -> ([u32; N], [f32; N]) {
+    let mut i = [0u32; N];
+    let mut fraction = [0.0f32; N];
+    for k in 0..N {
+        let rounded = (x[k] - 0.5) + ROUNDER;
+        let cell = rounded.to_bits().wrapping_sub(ROUNDER.to_bits());
+        i[k] = cell.min(last_cell);
+    }
+    for k in 0..N {
+        fraction[k] = x[k] - i[k] as f32;
+    }
+    (i, fraction)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -349,6 +415,16 @@ mod tests {
                     scalar.to_bits(),
                     "{spacing:?} at ({a}, {b})"
                 );
+            }
+            // Several segments at once: each lane the single lookup's bits.
+            for (k, back) in values.chunks_exact(8).enumerate() {
+                let back: [f32; 8] = back.try_into().expect("8 lanes");
+                let front = std::array::from_fn(|i| values[(k * 13 + i * 5 + 1) % values.len()]);
+                let lanes = table.lookup_lanes(&back, &front);
+                for i in 0..8 {
+                    let single = table.lookup(back[i], front[i]);
+                    assert_eq!(lanes[i].to_bits(), single.to_bits(), "{spacing:?} lane {i}");
+                }
             }
         }
     }

@@ -78,6 +78,16 @@ impl SegmentLight {
     }
 }
 
+/// A segment between two classified scalars (front nearer the eye),
+/// `length` world units long: what a walk hands an integrator, one per ray
+/// when several rays are integrated at once.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SampledSegment<S> {
+    pub front: S,
+    pub back: S,
+    pub length: f32,
+}
+
 /// The two numbers of eq. 5.5 for one channel: the transmittance `zeta` and
 /// `Psi`. With them, `I(D) = I_0 zeta + L_b (Psi - zeta) + L_f (1 - Psi)`.
 /// Every method but the Riemann sum and the table methods reduces to these.
