@@ -5,7 +5,7 @@ use std::time::{Duration, Instant};
 
 use glam::Vec3;
 use rayon::prelude::*;
-use tetray_integrate::{KernelVisitor, ScalarIntegrator, SegmentKernel, Typed};
+use tetray_integrate::{KernelVisitor, SampledSegment, ScalarIntegrator, SegmentKernel, Typed};
 
 use crate::camera::{Camera, CameraError, PixelRays};
 use crate::image::{Image, ImageError};
@@ -262,8 +262,8 @@ pub(crate) struct Frame<'a, I: ?Sized> {
     bounds: (Vec3, Vec3),
     progress: Option<&'a (dyn Fn(usize, usize) + Sync)>,
     rows_done: AtomicUsize,
-    /// Whether the mesh is large enough to keep [`IN_FLIGHT_LARGE`] rays in
-    /// flight and prefetch (see [`LARGE_MESH_TETS`]).
+    /// Whether the mesh is large enough to prefetch (see
+    /// [`LARGE_MESH_TETS`]).
     large: bool,
     /// Whether the walk runs as compiled for x86-64-v3 (see [`wide_cpu`]).
     wide: bool,
@@ -304,21 +304,24 @@ impl<'a, I: SegmentIntegrator + ?Sized> Frame<'a, I> {
     }
 }
 
-/// Rays each worker keeps in flight (see [`Walker`]): enough to overlap
-/// the walk's cache misses once the mesh outgrows the caches, few enough
-/// to keep the walkers' state in L1 while it fits.
-const IN_FLIGHT: usize = 4;
-const IN_FLIGHT_LARGE: usize = 8;
-/// Meshes from this many tetrahedra on keep [`IN_FLIGHT_LARGE`] rays in
-/// flight (alternating runs, 512 x 512: the 10 M torus shell 11% faster
-/// with 8 than with 4) and prefetch the records of the cells each ray may
-/// enter next (alternating runs: 40 M shell 8.2-12.5 -> 13.3-17.3 M
-/// segments/s, 10 M 15.6-17.0 -> 21.3-21.5). Since the walk carries its
-/// entry face and prefetches without branching, the 1 M shell gains too
-/// (8 alternating rounds: 17.0-24.5 -> 22.6-28.8 M segments/s, faster in
-/// 7); on the Blunt Fin (187 k) the two are within noise (10 rounds,
-/// min / median 159.5 / 182.0 against 156.3 / 175.4 ms), as they were
-/// 4-10% slower there with the walk before.
+/// Rays each worker keeps in flight, taken through each stage of a step
+/// together (see [`Walker::begin`]). A step of one ray is a chain of about
+/// 500 dependent instructions, more than the processor's reorder window,
+/// so the rays' chains overlap only when their stages are interleaved.
+/// Blunt Fin PPI, 512 x 512, alternating runs: 4 rays stepped one after
+/// the other 157.3 / 175.1 ms (min / median of 8), 16 in stages 110.1 /
+/// 138.2 (8 in stages 119.8 / 146.5, 32 130.7 / 150.6); the 10 M torus
+/// shell 25.0 -> 32.6 M segments/s (median of 3; 8 in stages 28.4).
+const IN_FLIGHT: usize = 16;
+/// Meshes from this many tetrahedra on prefetch the records of the cells
+/// each ray may enter next (alternating runs: 40 M shell 8.2-12.5 ->
+/// 13.3-17.3 M segments/s, 10 M 15.6-17.0 -> 21.3-21.5, with rays stepped
+/// one after the other). Since the walk carries its entry face and
+/// prefetches without branching, the 1 M shell gains too (8 alternating
+/// rounds: 17.0-24.5 -> 22.6-28.8 M segments/s, faster in 7); on the
+/// Blunt Fin (187 k) the two are within noise (10 rounds, min / median
+/// 159.5 / 182.0 against 156.3 / 175.4 ms), as they were 4-10% slower
+/// there with the walk before.
 const LARGE_MESH_TETS: usize = 500_000;
 
 /// Tile edge of the CPU ray caster (rows per parallel band).
@@ -364,8 +367,7 @@ impl<I: SegmentIntegrator + ?Sized> Frame<'_, I> {
     }
 
     /// Rows `y0..y0 + band_rows` of the image, tile by tile, [`IN_FLIGHT`]
-    /// ([`IN_FLIGHT_LARGE`] for large meshes)
-    /// rays at a time advanced in turn; `finish(walker, index)` takes each
+    /// rays at a time stepped together; `finish(walker, index)` takes each
     /// finished ray's light (`index`: the pixel's index within the band).
     pub(crate) fn band(
         &self,
@@ -381,7 +383,7 @@ impl<I: SegmentIntegrator + ?Sized> Frame<'_, I> {
             #[inline(always)]
             || {
                 if self.large {
-                    self.band_with::<IN_FLIGHT_LARGE, true>(y0, band_rows, new_walker, finish)
+                    self.band_with::<IN_FLIGHT, true>(y0, band_rows, new_walker, finish)
                 } else {
                     self.band_with::<IN_FLIGHT, false>(y0, band_rows, new_walker, finish)
                 }
@@ -390,7 +392,7 @@ impl<I: SegmentIntegrator + ?Sized> Frame<'_, I> {
     }
 
     /// [`Frame::band`] with `N` rays in flight, prefetching the records
-    /// they may enter next or not (see [`Walker::advance`]).
+    /// they may enter next or not (see [`Walker::begin`]).
     #[inline(always)]
     fn band_with<const N: usize, const PREFETCH: bool>(
         &self,
@@ -415,11 +417,24 @@ impl<I: SegmentIntegrator + ?Sized> Frame<'_, I> {
                 active += 1;
             }
         }
+        // Each round takes every ray one step, stage by stage: exits (or
+        // BVH entries), then classification, then the integration of all
+        // the segments at once, then compositing. `live` has a bit per ray.
+        const { assert!(N <= 32) };
+        let mut batch = [SampledSegment::default(); N];
         while active > 0 {
-            for (walker, index) in &mut slots {
-                if walker.advance::<PREFETCH, _>(self.scene, self.integrator, self.limits)
-                    || *index == usize::MAX
-                {
+            for (walker, _) in &mut slots {
+                walker.begin::<PREFETCH, _>(self.scene, self.integrator, self.limits);
+            }
+            let mut live = 0;
+            for (i, (walker, _)) in slots.iter_mut().enumerate() {
+                let integrate = walker.classify(self.integrator, &mut batch[i]);
+                live |= u32::from(integrate) << i;
+            }
+            let lights = self.integrator.segments(&batch, live);
+            for (i, (walker, index)) in slots.iter_mut().enumerate() {
+                let light = (live >> i & 1 != 0).then_some(lights[i]);
+                if walker.end(light, self.limits) || *index == usize::MAX {
                     continue;
                 }
                 stats.add(&walker.counters);
@@ -470,8 +485,8 @@ mod tests {
         }
     }
 
-    /// The large-mesh walk (8 rays in flight, the records of the cells a
-    /// ray may enter next prefetched) and the x86-64-v3 build of either
+    /// The large-mesh walk (the records of the cells a ray may enter next
+    /// prefetched) and the x86-64-v3 build of either
     /// give the small-mesh walk's image and counters bit for bit, on a
     /// mesh with a hole (re-entries) from outside and from inside.
     #[test]

@@ -7,6 +7,7 @@ use glam::{Vec3, Vec3A};
 use tetray_boundary_bvh::reentry_start;
 use tetray_boundary_bvh::watertight::{Projector, RayFrame};
 use tetray_integrate::fastmath::max_f32;
+use tetray_integrate::SampledSegment;
 use tetray_mesh::FACE_VERTICES;
 
 use crate::face::{local_index, Face, Vertex};
@@ -36,6 +37,25 @@ pub trait SegmentIntegrator: Sync {
     /// transmittance, for a scalar linear from `front` to `back` over
     /// `length` world units.
     fn segment(&self, front: &Self::Sample, back: &Self::Sample, length: f32) -> (Vec3A, Vec3A);
+
+    /// [`SegmentIntegrator::segment`] of the segments of several rays in
+    /// flight: lane `i` where bit `i` of `live` is set, anything elsewhere.
+    /// An integrator may integrate its lanes together, to the same bits.
+    #[inline(always)]
+    fn segments<const N: usize>(
+        &self,
+        batch: &[SampledSegment<Self::Sample>; N],
+        live: u32,
+    ) -> [(Vec3A, Vec3A); N] {
+        std::array::from_fn(|i| {
+            let s = &batch[i];
+            if live >> i & 1 == 0 {
+                (Vec3A::ZERO, Vec3A::ONE)
+            } else {
+                self.segment(&s.front, &s.back, s.length)
+            }
+        })
+    }
 }
 
 /// Limits of one walk.
@@ -174,8 +194,12 @@ const fn bit_of(others: [usize; 3], code: usize, k: usize) -> bool {
 enum Phase {
     /// Between entries: the next step asks the BVH where the ray enters.
     Entering,
-    /// Inside the mesh, in `Walker::cell`.
+    /// Inside the mesh, in `Walker::tet`.
     Walking,
+    /// Half-way through a step: the exit is found; the segment is
+    /// classified and integrated, and its light composited
+    /// ([`Walker::end`]) before the ray moves to `Walker::crossing`.
+    Crossing,
     Done,
 }
 
@@ -199,6 +223,11 @@ pub(crate) struct Walker<S> {
     skip_t: f32,
     tet: usize,
     f_in: usize,
+    /// Distance and scalar at the exit of the step in progress.
+    t_exit: f32,
+    s_out: f32,
+    /// The record's entry across the exit face of the step in progress.
+    crossing: u32,
     face: Face,
     t_in: f32,
     s_in: f32,
@@ -227,6 +256,9 @@ impl<S: Copy + Default> Walker<S> {
             skip_t: f32::NAN,
             tet: 0,
             f_in: 0,
+            t_exit: 0.0,
+            s_out: 0.0,
+            crossing: FINAL_EXIT,
             face: Face::EMPTY,
             t_in: 0.0,
             s_in: 0.0,
@@ -277,12 +309,8 @@ impl<S: Copy + Default> Walker<S> {
         self.interval_segments = 0;
     }
 
-    /// One BVH query or one tetrahedron; returns whether the ray goes on.
-    ///
-    /// With `PREFETCH`, each step first prefetches the records of the three
-    /// cells the ray may enter next, so that a mesh too large for the
-    /// caches costs less than a miss per step: the record arrives while the
-    /// step computes its exit and integrates.
+    /// One BVH query or one tetrahedron, its segment integrated alone;
+    /// returns whether the ray goes on.
     #[inline(always)]
     pub fn advance<const PREFETCH: bool, I: SegmentIntegrator<Sample = S> + ?Sized>(
         &mut self,
@@ -290,10 +318,48 @@ impl<S: Copy + Default> Walker<S> {
         integrator: &I,
         limits: WalkLimits,
     ) -> bool {
+        self.begin::<PREFETCH, I>(scene, integrator, limits);
+        let mut segment = SampledSegment::default();
+        let light = self
+            .classify(integrator, &mut segment)
+            .then(|| integrator.segment(&segment.front, &segment.back, segment.length));
+        self.end(light, limits)
+    }
+
+    /// The first stage of [`Walker::advance`]: one BVH query, or where the
+    /// ray leaves its tetrahedron. Then [`Walker::classify`] finds the
+    /// step's segment and [`Walker::end`] composites its light. A thread
+    /// with many rays in flight takes each stage for all of them in turn
+    /// and integrates their segments together: the stages of different
+    /// rays are independent, and the processor overlaps them, where one
+    /// ray's step is a single chain of dependent operations.
+    ///
+    /// With `PREFETCH`, each step first prefetches the records of the three
+    /// cells the ray may enter next, so that a mesh too large for the
+    /// caches costs less than a miss per step: the record arrives while the
+    /// step computes its exit and integrates.
+    #[inline(always)]
+    pub fn begin<const PREFETCH: bool, I: SegmentIntegrator<Sample = S> + ?Sized>(
+        &mut self,
+        scene: &Scene,
+        integrator: &I,
+        limits: WalkLimits,
+    ) {
         match self.phase {
-            Phase::Walking => self.step::<PREFETCH, I>(scene, integrator, limits),
+            Phase::Walking => self.exit::<PREFETCH>(scene, limits),
             Phase::Entering => self.enter(scene, integrator),
-            Phase::Done => {}
+            Phase::Crossing | Phase::Done => {}
+        }
+    }
+
+    /// The last stage of [`Walker::advance`]: composites the light of the
+    /// step's segment (`None` when [`Walker::classify`] found none), stops
+    /// the ray once it is opaque enough, and moves it across the exit face.
+    /// Returns whether the ray goes on.
+    #[inline(always)]
+    pub fn end(&mut self, light: Option<(Vec3A, Vec3A)>, limits: WalkLimits) -> bool {
+        if self.phase == Phase::Crossing {
+            self.cross(light, limits);
         }
         self.phase != Phase::Done
     }
@@ -334,13 +400,9 @@ impl<S: Copy + Default> Walker<S> {
         self.phase = Phase::Walking;
     }
 
+    /// Finds where the ray leaves the current cell and the cell it enters.
     #[inline(always)]
-    fn step<const PREFETCH: bool, I: SegmentIntegrator<Sample = S> + ?Sized>(
-        &mut self,
-        scene: &Scene,
-        integrator: &I,
-        limits: WalkLimits,
-    ) {
+    fn exit<const PREFETCH: bool>(&mut self, scene: &Scene, limits: WalkLimits) {
         let record = &scene.walk[self.tet];
         if PREFETCH {
             // The next tetrahedron is one of the neighbours across the three
@@ -370,10 +432,33 @@ impl<S: Copy + Default> Walker<S> {
             self.phase = Phase::Done;
             return;
         };
+        self.t_exit = t_exit;
+        self.s_out = s_out;
+        // The exit face is the one opposite the entry face's vertex it
+        // leaves out.
+        self.crossing = record.next[local_index(record.verts, left_out)];
+        self.phase = Phase::Crossing;
+    }
+
+    /// The second stage of [`Walker::advance`]: classifies the scalar at
+    /// the exit found by [`Walker::begin`] and writes the step's segment,
+    /// if it has positive length in front of the eye; returns whether it
+    /// has.
+    #[inline(always)]
+    pub fn classify<I: SegmentIntegrator<Sample = S> + ?Sized>(
+        &mut self,
+        integrator: &I,
+        segment: &mut SampledSegment<S>,
+    ) -> bool {
+        if self.phase != Phase::Crossing {
+            return false;
+        }
+        let (t_exit, s_out) = (self.t_exit, self.s_out);
         let (t_in, s_in) = (self.t_in, self.s_in);
         let sample_in = self.sample_in;
         let t_out = max_f32(t_exit, t_in);
         let sample_out = integrator.sample_near(s_out, &sample_in);
+        let mut integrate = false;
         if t_out > t_in {
             self.skip.clear();
             self.skip_t = f32::NAN;
@@ -385,26 +470,36 @@ impl<S: Copy + Default> Walker<S> {
                 } else {
                     sample_in
                 };
-                let length = t_out - max_f32(t_in, 0.0);
-                let (emitted, transmittance) = integrator.segment(&front, &sample_out, length);
-                let light = &mut self.light;
-                light.color += light.transmittance * emitted;
-                light.transmittance *= transmittance;
-                counters.segments += 1;
-                self.interval_segments += 1;
-                // 1 - mean(T) >= threshold, without a division.
-                if light.transmittance.element_sum() <= limits.stop_below_sum {
-                    self.phase = Phase::Done;
-                    return;
-                }
+                *segment = SampledSegment {
+                    front,
+                    back: sample_out,
+                    length: t_out - max_f32(t_in, 0.0),
+                };
+                integrate = true;
             }
         }
         self.t_in = t_out;
         self.s_in = s_out;
         self.sample_in = sample_out;
-        // The exit face is the one opposite the entry face's vertex it
-        // leaves out.
-        let next = record.next[local_index(record.verts, left_out)];
+        integrate
+    }
+
+    /// Composites the step's segment and crosses its exit face.
+    #[inline(always)]
+    fn cross(&mut self, light: Option<(Vec3A, Vec3A)>, limits: WalkLimits) {
+        if let Some((emitted, transmittance)) = light {
+            let ray = &mut self.light;
+            ray.color += ray.transmittance * emitted;
+            ray.transmittance *= transmittance;
+            self.counters.segments += 1;
+            self.interval_segments += 1;
+            // 1 - mean(T) >= threshold, without a division.
+            if ray.transmittance.element_sum() <= limits.stop_below_sum {
+                self.phase = Phase::Done;
+                return;
+            }
+        }
+        let next = self.crossing;
         if next >= FINAL_EXIT {
             // Left through the convex hull: nothing more to meet; otherwise
             // ask the BVH where the ray comes back.
@@ -413,7 +508,7 @@ impl<S: Copy + Default> Walker<S> {
             } else {
                 Phase::Entering
             };
-            self.t_cursor = t_out;
+            self.t_cursor = self.t_in;
             if self.split {
                 self.close_interval();
             }
@@ -421,6 +516,7 @@ impl<S: Copy + Default> Walker<S> {
         }
         self.tet = (next >> 2) as usize;
         self.f_in = (next & 3) as usize;
+        self.phase = Phase::Walking;
     }
 }
 
@@ -444,5 +540,15 @@ impl<K: tetray_integrate::SegmentKernel> SegmentIntegrator for tetray_integrate:
     fn segment(&self, front: &Self::Sample, back: &Self::Sample, length: f32) -> (Vec3A, Vec3A) {
         let light = self.integrate_samples(front, back, length);
         (light.emitted, light.transmittance)
+    }
+
+    #[inline(always)]
+    fn segments<const N: usize>(
+        &self,
+        batch: &[SampledSegment<Self::Sample>; N],
+        live: u32,
+    ) -> [(Vec3A, Vec3A); N] {
+        self.integrate_batch(batch, live)
+            .map(|light| (light.emitted, light.transmittance))
     }
 }
