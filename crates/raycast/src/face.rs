@@ -26,14 +26,6 @@ pub(crate) struct Vertex {
 }
 
 impl Vertex {
-    const EMPTY: Vertex = Vertex {
-        x: 0.0,
-        y: 0.0,
-        z: 0.0,
-        s: 0.0,
-        id: 0,
-    };
-
     /// Point `id` (position and scalar) projected into a ray's frame.
     #[inline(always)]
     pub fn load(points: &[[f32; 4]], ray: &Projector, id: u32) -> Vertex {
@@ -90,19 +82,51 @@ const PRECEDING: [usize; 4] = [2, 0, 1, 0];
 
 /// The face a ray entered its current tetrahedron through: three vertices
 /// in the cyclic order in which the ray sees every edge positive, and
-/// `edge[i] = E(v_i, v_{i+1})`. Slot 3 is unused (slots are masked to two
-/// bits, so indexing needs no bounds check).
+/// `edge[i] = E(v_i, v_{i+1})`, each quantity in an array of its own (so
+/// that the three new edge functions of an exit are one vector operation).
+/// Slot 3 is unused (slots are masked to two bits, so indexing needs no
+/// bounds check).
 #[derive(Clone, Copy)]
 pub(crate) struct Face {
-    v: [Vertex; 4],
+    x: [f64; 4],
+    y: [f64; 4],
+    z: [f32; 4],
+    s: [f32; 4],
+    id: [u32; 4],
     edge: [f64; 4],
 }
 
 impl Face {
     pub const EMPTY: Face = Face {
-        v: [Vertex::EMPTY; 4],
+        x: [0.0; 4],
+        y: [0.0; 4],
+        z: [0.0; 4],
+        s: [0.0; 4],
+        id: [0; 4],
         edge: [0.0; 4],
     };
+
+    /// The vertex in slot `i`.
+    #[inline(always)]
+    fn vertex(&self, i: usize) -> Vertex {
+        Vertex {
+            x: self.x[i],
+            y: self.y[i],
+            z: self.z[i],
+            s: self.s[i],
+            id: self.id[i],
+        }
+    }
+
+    /// Puts `v` in slot `i`.
+    #[inline(always)]
+    fn set(&mut self, i: usize, v: Vertex) {
+        self.x[i] = v.x;
+        self.y[i] = v.y;
+        self.z[i] = v.z;
+        self.s[i] = v.s;
+        self.id[i] = v.id;
+    }
 
     /// Enters the tetrahedron with point indices `verts` through its local
     /// face `f` (all of whose edges are negative in the tetrahedron's own
@@ -114,10 +138,11 @@ impl Face {
         let (_, w) = crossing_barycentric(a.point(), b.point(), c.point());
         let value = w[0] * f64::from(a.s) + w[1] * f64::from(b.s) + w[2] * f64::from(c.s);
         // Reversed, the face's edges are positive.
-        let face = Face {
-            v: [a, c, b, Vertex::EMPTY],
-            edge: [a.edge(&c), c.edge(&b), b.edge(&a), 0.0],
-        };
+        let mut face = Face::EMPTY;
+        for (i, v) in [a, c, b].into_iter().enumerate() {
+            face.set(i, v);
+        }
+        face.edge = [a.edge(&c), c.edge(&b), b.edge(&a), 0.0];
         (face, value as f32)
     }
 
@@ -130,7 +155,9 @@ impl Face {
     /// functions, with `d`, then the vertices following and preceding it.
     #[inline(always)]
     pub fn exit(&mut self, d: Vertex) -> Option<(u32, f32, f32)> {
-        let e = [d.edge(&self.v[0]), d.edge(&self.v[1]), d.edge(&self.v[2])];
+        // E(d, v_i) of the three slots (and of the unused fourth) at once,
+        // with `Vertex::edge`'s operations.
+        let e: [f64; 4] = std::array::from_fn(|i| d.x * self.y[i] - d.y * self.x[i]);
         // Which face the ray leaves through is as good as random, so the
         // signs are combined without branches (a branch per sign costs
         // about one misprediction per step); an exact zero, rare, takes
@@ -138,8 +165,8 @@ impl Face {
         let any_zero = (e[0] == 0.0) | (e[1] == 0.0) | (e[2] == 0.0);
         let code = if any_zero {
             let mut code = 0;
-            for (i, &edge) in e.iter().enumerate() {
-                code |= usize::from(d.positive(&self.v[i], edge)) << i;
+            for (i, &edge) in e[..3].iter().enumerate() {
+                code |= usize::from(d.positive(&self.vertex(i), edge)) << i;
             }
             code
         } else {
@@ -151,12 +178,11 @@ impl Face {
         }
         let k = usize::from(k & 3);
         let (next, prev) = (FOLLOWING[k], PRECEDING[k]);
-        let (vn, vp) = (self.v[next], self.v[prev]);
         // Weights of (d, next, prev): each the edge function of the
         // opposite edge, with E(prev, d) = -E(d, prev) exactly.
         let w = [self.edge[next], -e[prev], e[next]];
-        let z = [d.z, vn.z, vp.z];
-        let s = [d.s, vn.s, vp.s];
+        let z = [d.z, self.z[next], self.z[prev]];
+        let s = [d.s, self.s[next], self.s[prev]];
         let lo = min_f32(min_f32(z[0], z[1]), z[2]);
         let hi = max_f32(max_f32(z[0], z[1]), z[2]);
         let sum = w[0] + w[1] + w[2];
@@ -179,9 +205,9 @@ impl Face {
                 (w[0] * f64::from(s[0]) + w[1] * f64::from(s[1]) + w[2] * f64::from(s[2])) * inv;
             (clamp_f32(t as f32, lo, hi), value as f32)
         };
-        let left_out = self.v[k].id;
+        let left_out = self.id[k];
         // The exit face in cyclic order (d, next, prev): d takes slot k.
-        self.v[k] = d;
+        self.set(k, d);
         self.edge[k] = e[next];
         self.edge[prev] = -e[prev];
         Some((left_out, t, value))
@@ -263,7 +289,7 @@ mod tests {
             assert!(t >= z[0].min(z[1]).min(z[2]) && t <= z[0].max(z[1]).max(z[2]));
             // The carried face is the exit face, every edge positive.
             for s in 0..3 {
-                let (a, b) = (face.v[s], face.v[(s + 1) % 3]);
+                let (a, b) = (face.vertex(s), face.vertex((s + 1) % 3));
                 assert_eq!(face.edge[s].to_bits(), a.edge(&b).to_bits());
                 assert!(a.positive(&b, face.edge[s]), "{p:?} entered through {f}");
             }
