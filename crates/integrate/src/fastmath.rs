@@ -23,8 +23,29 @@ pub fn exp_f32(x: f32) -> f32 {
     if x > 88.0 {
         return f32::INFINITY;
     }
+    exp_in_range(x)
+}
+
+/// [`exp_f32`] without a branch, the same bits for every input: the
+/// polynomial runs for every `x` and the out-of-range results are selected
+/// after it, so that a loop of these over several segments vectorizes.
+#[inline(always)]
+pub fn exp_f32_select(x: f32) -> f32 {
+    let v = exp_in_range(x);
+    let v = if x > 88.0 { f32::INFINITY } else { v };
+    if x < -87.0 {
+        0.0
+    } else {
+        v
+    }
+}
+
+/// `e^x` for `x` in `[-87, 88]` (and NaN); other `x` give anything.
+#[inline(always)]
+fn exp_in_range(x: f32) -> f32 {
     // x = k ln 2 + r, |r| <= ln 2 / 2 (Cody-Waite reduction).
-    let kf = (x * LOG2_E + ROUNDER) - ROUNDER;
+    let rounded = x * LOG2_E + ROUNDER;
+    let kf = rounded - ROUNDER;
     let r = (x - kf * LN2_HI) - kf * LN2_LO;
     // Taylor to r^7: truncation below 5e-9 relative for |r| <= 0.347.
     let p = 1.0
@@ -33,36 +54,11 @@ pub fn exp_f32(x: f32) -> f32 {
                 + r * (1.0 / 6.0
                     + r * (1.0 / 24.0
                         + r * (1.0 / 120.0 + r * (1.0 / 720.0 + r * (1.0 / 5040.0)))))));
-    // 2^k by building the exponent bits (k in [-126, 127] here).
-    let k = kf as i32;
-    p * f32::from_bits(((k + 127) as u32) << 23)
-}
-
-/// [`exp_f32`] without a branch, the same bits for every input: the
-/// polynomial runs for every `x` and the out-of-range results are selected
-/// after it, so that a loop of these over several segments vectorizes.
-#[inline(always)]
-pub fn exp_f32_select(x: f32) -> f32 {
-    let rounded = x * LOG2_E + ROUNDER;
-    let kf = rounded - ROUNDER;
-    let r = (x - kf * LN2_HI) - kf * LN2_LO;
-    let p = 1.0
-        + r * (1.0
-            + r * (0.5
-                + r * (1.0 / 6.0
-                    + r * (1.0 / 24.0
-                        + r * (1.0 / 120.0 + r * (1.0 / 720.0 + r * (1.0 / 5040.0)))))));
-    // `k` from the low bits of the rounded sum, as `kf as i32` for the `x`
-    // in range (|k| < 2^22), with no float-to-int conversion; out of range
-    // the bits are anything and the result is replaced below.
+    // 2^k by building the exponent bits (k in [-126, 127] here), `k` from
+    // the low bits of the rounded sum (exact for |k| < 2^22, with no
+    // float-to-int conversion, so that it vectorizes).
     let k = rounded.to_bits().wrapping_sub(ROUNDER.to_bits());
-    let v = p * f32::from_bits(k.wrapping_add(127) << 23);
-    let v = if x > 88.0 { f32::INFINITY } else { v };
-    if x < -87.0 {
-        0.0
-    } else {
-        v
-    }
+    p * f32::from_bits(k.wrapping_add(127) << 23)
 }
 
 /// `f` of the lanes of `a` and `b`, four at a time in a `Vec4` (SSE or

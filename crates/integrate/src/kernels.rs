@@ -194,6 +194,13 @@ pub struct Grey<'a, W> {
 }
 
 impl<W: WeightKernel> Grey<'_, W> {
+    /// Whether a segment between these samples is integrated as one piece:
+    /// within one knot interval (the common case), or with no splitting.
+    #[inline(always)]
+    fn one_piece(&self, front: &GreySample, back: &GreySample) -> bool {
+        front.interval == back.interval || !self.split
+    }
+
     #[inline(always)]
     fn piece(&self, front: Vec4, back: Vec4, d: f32) -> SegmentLight {
         let scale = if W::TAU { d } else { 1.0 };
@@ -223,9 +230,8 @@ impl<W: WeightKernel> SegmentKernel for Grey<'_, W> {
         back: &GreySample,
         length: f32,
     ) -> SegmentLight {
-        // One interval (the common case) or no splitting: a single piece
-        // with the samples' own materials.
-        if front.interval == back.interval || !self.split {
+        // A single piece with the samples' own materials.
+        if self.one_piece(front, back) {
             return self.piece(front.material, back.material, length);
         }
         let mut light = SegmentLight::CLEAR;
@@ -255,7 +261,7 @@ impl<W: WeightKernel> SegmentKernel for Grey<'_, W> {
         let mut lights: [SegmentLight; N] =
             std::array::from_fn(|i| weights[i].light(batch[i].back.lum(), batch[i].front.lum()));
         for (i, (light, s)) in lights.iter_mut().zip(batch).enumerate() {
-            let one_piece = s.front.interval == s.back.interval || !self.split;
+            let one_piece = self.one_piece(&s.front, &s.back);
             if live >> i & 1 != 0 && !(one_piece && carries_material(s.length)) {
                 *light = if carries_material(s.length) {
                     self.segment(knots, &s.front, &s.back, s.length)

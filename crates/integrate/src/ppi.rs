@@ -57,23 +57,14 @@ pub fn ppi_segment(table: &PsiTable, p: &SegmentParams) -> SegmentLight {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::psi::GammaSpacing;
+    use crate::psi::{test_tau_d, GammaSpacing};
 
     /// The lanes give each segment's single-segment weights to the bit, over
     /// the attenuations a walk produces (`tau D >= 0`, up to infinity) and
     /// NaN, with both table spacings.
     #[test]
     fn lanes_give_the_single_segment_bits() {
-        let mut values = vec![0.0f32, 1e-30, 1e-7, 0.5, 1.0, 87.0, 200.0, 1e30];
-        values.extend([f32::INFINITY, f32::NAN]);
-        let mut state = 0x2545_f491_u32;
-        for _ in 0..4000 {
-            state ^= state << 13;
-            state ^= state >> 17;
-            state ^= state << 5;
-            // Non-negative finite floats up to about 2^7.
-            values.push(f32::from_bits(state % 0x4300_0000));
-        }
+        let values = test_tau_d(0x2545_f491, 4000);
         for spacing in [GammaSpacing::Uniform, GammaSpacing::Quadratic] {
             let table = PsiTable::build(64, spacing).expect("table");
             for (k, back) in values.chunks_exact(16).enumerate() {

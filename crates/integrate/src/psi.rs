@@ -234,16 +234,21 @@ impl PsiTable {
     /// [`PsiTable::bilinear`] per lane, so the same bits.
     #[inline(always)]
     pub fn lookup(&self, tau_d_back: f32, tau_d_front: f32) -> f32 {
+        let x = self.coord_lanes(Vec4::new(tau_d_back, tau_d_front, 0.0, 0.0));
+        self.interpolate(x.x, x.y)
+    }
+
+    /// Node coordinates in `[0, size - 1]` of four `tau D` values.
+    #[inline(always)]
+    fn coord_lanes(&self, tau_d: Vec4) -> Vec4 {
         let one = Vec4::ONE;
-        let tau_d = Vec4::new(tau_d_back, tau_d_front, 0.0, 0.0);
         let u = match self.spacing {
             GammaSpacing::Uniform => one - (one + tau_d).recip(),
             GammaSpacing::Quadratic => one - (one + tau_d).sqrt().recip(),
         };
         // max and min return their second operand when either is NaN: a
         // NaN coordinate stays NaN, as through f32::clamp.
-        let x = one.min(Vec4::ZERO.max(u)) * self.last;
-        self.interpolate(x.x, x.y)
+        one.min(Vec4::ZERO.max(u)) * self.last
     }
 
     /// [`PsiTable::lookup`] of `N` segments at once, lane by lane with its
@@ -255,8 +260,8 @@ impl PsiTable {
         tau_d_back: &[f32; N],
         tau_d_front: &[f32; N],
     ) -> [f32; N] {
-        let x = self.coords(tau_d_back);
-        let y = self.coords(tau_d_front);
+        let x = by_fours(tau_d_back, tau_d_back, |t, _| self.coord_lanes(t));
+        let y = by_fours(tau_d_front, tau_d_front, |t, _| self.coord_lanes(t));
         let (i, fx) = cells(&x, self.last_cell);
         let (j, fy) = cells(&y, self.last_cell);
         let n = self.size;
@@ -273,26 +278,14 @@ impl PsiTable {
             |offset: usize| -> [f32; N] { std::array::from_fn(|k| self.values[base[k] + offset]) };
         let near = [node(0), node(1)];
         let far = [node(n), node(n + 1)];
-        let mut out = [0.0; N];
-        for k in 0..N {
-            let bottom = near[0][k] + (near[1][k] - near[0][k]) * fx[k];
-            let top = far[0][k] + (far[1][k] - far[0][k]) * fx[k];
-            out[k] = bottom + (top - bottom) * fy[k];
-        }
-        out
-    }
-
-    /// The node coordinates of `lookup`, per lane, with its operations.
-    #[inline(always)]
-    fn coords<const N: usize>(&self, tau_d: &[f32; N]) -> [f32; N] {
-        let (one, last) = (Vec4::ONE, self.last);
-        let u = match self.spacing {
-            GammaSpacing::Uniform => by_fours(tau_d, tau_d, |t, _| one - (one + t).recip()),
-            GammaSpacing::Quadratic => {
-                by_fours(tau_d, tau_d, |t, _| one - (one + t).sqrt().recip())
-            }
-        };
-        by_fours(&u, &u, |u, _| one.min(Vec4::ZERO.max(u)) * last)
+        std::array::from_fn(|k| {
+            bilinear_in_cell(
+                [near[0][k], near[1][k]],
+                [far[0][k], far[1][k]],
+                fx[k],
+                fy[k],
+            )
+        })
     }
 
     /// Bilinear lookup by `(gamma_b, gamma_f)` in `[0, 1]`.
@@ -337,9 +330,7 @@ impl PsiTable {
         ) else {
             return f32::NAN;
         };
-        let bottom = near[0] + (near[1] - near[0]) * fx;
-        let top = far[0] + (far[1] - far[0]) * fx;
-        bottom + (top - bottom) * fy
+        bilinear_in_cell([near[0], near[1]], [far[0], far[1]], fx, fy)
     }
 }
 
@@ -356,7 +347,7 @@ const ROUNDER: f32 = 12_582_912.0;
 fn cell(x: f32, last_cell: u32) -> (u32, f32) {
     let rounded = (x - 0.5) + ROUNDER;
     let i = rounded.to_bits().wrapping_sub(ROUNDER.to_bits());
-    let i = if i < last_cell { i } else { last_cell };
+    let i = i.min(last_cell);
     (i, x - i as f32)
 }
 
@@ -365,15 +356,49 @@ fn cell(x: f32, last_cell: u32) -> (u32, f32) {
 fn cells<const N: usize>(x: &[f32; N], last_cell: u32) -> ([u32; N], [f32; N]) {
     let mut i = [0u32; N];
     let mut fraction = [0.0f32; N];
-    for k in 0..N {
-        let rounded = (x[k] - 0.5) + ROUNDER;
-        let cell = rounded.to_bits().wrapping_sub(ROUNDER.to_bits());
-        i[k] = cell.min(last_cell);
-    }
-    for k in 0..N {
-        fraction[k] = x[k] - i[k] as f32;
+    for (k, &x) in x.iter().enumerate() {
+        (i[k], fraction[k]) = cell(x, last_cell);
     }
     (i, fraction)
+}
+
+/// The value at position `(fx, fy)` in a cell whose nodes are `near` (the
+/// lower row) and `far`.
+#[inline(always)]
+fn bilinear_in_cell(near: [f32; 2], far: [f32; 2], fx: f32, fy: f32) -> f32 {
+    let bottom = near[0] + (near[1] - near[0]) * fx;
+    let top = far[0] + (far[1] - far[0]) * fx;
+    bottom + (top - bottom) * fy
+}
+
+/// Inputs for tests of the lookups: `tau D` of zero, tiny, moderate, huge,
+/// infinite and NaN, then `count` non-negative finite values up to about
+/// 2^7 from an xorshift generator started at `seed`.
+#[cfg(test)]
+pub(crate) fn test_tau_d(seed: u32, count: usize) -> Vec<f32> {
+    let mut values = vec![
+        0.0,
+        1e-30,
+        1e-7,
+        1e-6,
+        0.5,
+        1.0,
+        3.0,
+        87.0,
+        200.0,
+        1e3,
+        1e30,
+        f32::INFINITY,
+        f32::NAN,
+    ];
+    let mut state = seed;
+    for _ in 0..count {
+        state ^= state << 13;
+        state ^= state >> 17;
+        state ^= state << 5;
+        values.push(f32::from_bits(state % 0x4300_0000));
+    }
+    values
 }
 
 #[cfg(test)]
@@ -385,25 +410,7 @@ mod tests {
         // The lookup computes both coordinates in SIMD lanes; it must give
         // what the scalar coordinate and clamp give, to the bit, including
         // zero, infinity and NaN.
-        let mut values = vec![
-            0.0,
-            1e-30,
-            1e-6,
-            0.5,
-            1.0,
-            3.0,
-            1e3,
-            1e30,
-            f32::INFINITY,
-            f32::NAN,
-        ];
-        let mut state = 0x9e37_79b9_u32;
-        for _ in 0..2000 {
-            state ^= state << 13;
-            state ^= state >> 17;
-            state ^= state << 5;
-            values.push(f32::from_bits(state % 0x4300_0000));
-        }
+        let values = test_tau_d(0x9e37_79b9, 2000);
         for spacing in [GammaSpacing::Uniform, GammaSpacing::Quadratic] {
             let table = PsiTable::build(64, spacing).expect("table");
             for (i, &a) in values.iter().enumerate() {
