@@ -81,14 +81,14 @@ pub fn reentry_start(ray: &watertight::RayFrame, t_exit: f32, scene_abs_max: f32
 
 /// A ray with a non-finite origin or direction, or a NaN range, crosses
 /// nothing by contract (its distances would be meaningless).
-#[inline]
+#[inline(always)]
 pub(crate) fn query_is_valid(ray: &watertight::RayFrame, t_min: f32, t_max: f32) -> bool {
     ray.origin.is_finite() && ray.dir.is_finite() && !t_min.is_nan() && !t_max.is_nan()
 }
 
 /// Whether `(t, face)` beats the best hit so far: nearer, or as near with a
 /// lower face index, so every traversal order returns the same hit.
-#[inline]
+#[inline(always)]
 pub(crate) fn is_better(t: f32, face: u32, best: Option<EntryHit>) -> bool {
     match best {
         None => true,

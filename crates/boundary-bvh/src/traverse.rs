@@ -26,13 +26,13 @@ struct ArrayStack {
 }
 
 impl NodeStack for ArrayStack {
-    #[inline]
+    #[inline(always)]
     fn push(&mut self, node: u32, t_enter: f32) {
         // Cannot overflow: only used when the tree depth is <= INLINE_STACK.
         self.items[self.len] = (node, t_enter);
         self.len += 1;
     }
-    #[inline]
+    #[inline(always)]
     fn pop(&mut self) -> Option<(u32, f32)> {
         self.len = self.len.checked_sub(1)?;
         Some(self.items[self.len])
@@ -40,11 +40,11 @@ impl NodeStack for ArrayStack {
 }
 
 impl NodeStack for Vec<(u32, f32)> {
-    #[inline]
+    #[inline(always)]
     fn push(&mut self, node: u32, t_enter: f32) {
         Vec::push(self, (node, t_enter));
     }
-    #[inline]
+    #[inline(always)]
     fn pop(&mut self) -> Option<(u32, f32)> {
         Vec::pop(self)
     }
@@ -68,7 +68,7 @@ impl Search<'_> {
     }
 
     /// Tests one face with the shared predicate and keeps it if it is better.
-    #[inline]
+    #[inline(always)]
     fn consider(&mut self, face: u32, [a, b, c]: [Vec3; 3]) {
         let ray = self.ray;
         let Some(crossing) = cross_triangle(ray.project(a), ray.project(b), ray.project(c)) else {
@@ -91,6 +91,10 @@ impl BoundaryBvh {
     /// with `t_min <= t <= t_max`, ignoring the faces in `skip`; ties in `t`
     /// go to the lowest face index. Same result, bit for bit, as
     /// [`crate::brute_force_first_entry`].
+    ///
+    /// Inlined whole into its caller, so that a walk compiled for wider
+    /// instruction sets (`tetray-wide`) runs its queries in that set too.
+    #[inline(always)]
     pub fn first_entry(
         &self,
         ray: &RayFrame,
@@ -121,16 +125,17 @@ impl BoundaryBvh {
         search.best
     }
 
+    #[inline(always)]
     fn walk(&self, search: &mut Search<'_>, stack: &mut impl NodeStack) {
         let nodes = &self.bvh.nodes;
         let slab = RaySlab::new(search.ray.origin, search.ray.dir, self.scene_abs_max);
         let bounds = |index: u32| {
             let aabb = nodes[index as usize].aabb();
-            (aabb.min.to_array(), aabb.max.to_array())
+            (aabb.min, aabb.max)
         };
         let (root_min, root_max) = bounds(0);
         if slab
-            .entry(root_min, root_max, search.t_min, search.t_hi())
+            .entry_lanes(root_min, root_max, search.t_min, search.t_hi())
             .is_none()
         {
             return;
@@ -150,8 +155,8 @@ impl BoundaryBvh {
                 let t_hi = search.t_hi();
                 let (l_min, l_max) = bounds(left);
                 let (r_min, r_max) = bounds(right);
-                let hit_left = slab.entry(l_min, l_max, search.t_min, t_hi);
-                let hit_right = slab.entry(r_min, r_max, search.t_min, t_hi);
+                let hit_left = slab.entry_lanes(l_min, l_max, search.t_min, t_hi);
+                let hit_right = slab.entry_lanes(r_min, r_max, search.t_min, t_hi);
                 match (hit_left, hit_right) {
                     (Some(tl), Some(tr)) => {
                         let (near, far, t_far) = if tr < tl {

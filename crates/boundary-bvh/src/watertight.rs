@@ -48,7 +48,7 @@ impl RayFrame {
 
     /// Projects a point into this ray's frame. The same point always projects
     /// to the same bits, which is what makes shared edges agree.
-    #[inline]
+    #[inline(always)]
     pub fn project(&self, p: Vec3) -> RayPoint {
         let d = p - self.origin;
         RayPoint {
@@ -68,7 +68,7 @@ impl RayFrame {
 /// ties broken symbolically; `0` only when the edge is parallel to the ray
 /// (its projection is a single point), which no perturbation can resolve.
 /// Antisymmetric: `edge_sign(a, b) == -edge_sign(b, a)` always.
-#[inline]
+#[inline(always)]
 pub fn edge_sign(a: RayPoint, b: RayPoint) -> i8 {
     let e = f64::from(a.x) * f64::from(b.y) - f64::from(a.y) * f64::from(b.x);
     if e != 0.0 {
@@ -100,7 +100,7 @@ pub struct Crossing {
 
 /// Where the ray crosses triangle `(a, b, c)`, if it does. All three edge
 /// signs negative: entering; all positive: leaving.
-#[inline]
+#[inline(always)]
 pub fn cross_triangle(a: RayPoint, b: RayPoint, c: RayPoint) -> Option<Crossing> {
     let sab = edge_sign(a, b);
     let sbc = edge_sign(b, c);
@@ -117,7 +117,7 @@ pub fn cross_triangle(a: RayPoint, b: RayPoint, c: RayPoint) -> Option<Crossing>
 /// Distance along the ray to the plane of `(a, b, c)` where the ray crosses
 /// it, from barycentric weights of the projected triangle. Clamped into the
 /// range of the vertex distances so rounding cannot move it off the face.
-#[inline]
+#[inline(always)]
 pub fn crossing_distance(a: RayPoint, b: RayPoint, c: RayPoint) -> f32 {
     let wa = edge_function(b, c);
     let wb = edge_function(c, a);
@@ -136,7 +136,7 @@ pub fn crossing_distance(a: RayPoint, b: RayPoint, c: RayPoint) -> f32 {
 
 /// The 2-D edge function of `a -> b` about the ray (twice the signed area of
 /// the triangle origin, a, b in the projected plane).
-#[inline]
+#[inline(always)]
 pub fn edge_function(a: RayPoint, b: RayPoint) -> f64 {
     f64::from(a.x) * f64::from(b.y) - f64::from(a.y) * f64::from(b.x)
 }
@@ -147,7 +147,7 @@ pub fn edge_function(a: RayPoint, b: RayPoint) -> f64 {
 /// it. Weights are the normalised edge functions, as in
 /// [`crossing_distance`]; for a ray lying in the face's plane the nearest
 /// vertex, whose distance is returned, gets all the weight.
-#[inline]
+#[inline(always)]
 pub fn crossing_barycentric(a: RayPoint, b: RayPoint, c: RayPoint) -> (f32, [f64; 3]) {
     let wa = edge_function(b, c);
     let wb = edge_function(c, a);

@@ -364,6 +364,7 @@ impl<S: Copy + Default> Walker<S> {
         self.phase != Phase::Done
     }
 
+    #[inline(always)]
     fn enter<I: SegmentIntegrator<Sample = S> + ?Sized>(&mut self, scene: &Scene, integrator: &I) {
         // Re-entries start a little before the exit (see REENTRY_REL).
         let t_query = if self.counters.entries > 0 {
