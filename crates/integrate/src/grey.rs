@@ -43,6 +43,11 @@ pub struct GreySample {
     pub material: Vec4,
     pub scalar: f32,
     pub interval: i32,
+    /// The interval's scalar range `[lo, hi)` (`-inf` before the first
+    /// knot, `+inf` after the last), so that the next sample is checked
+    /// against it without reading the knots (it fills the padding).
+    lo: f32,
+    hi: f32,
 }
 
 impl GreySample {
@@ -105,21 +110,29 @@ impl GreyKnots {
             material: self.in_interval(k, s),
             scalar: s,
             interval: k as i32,
+            lo: if k < 0 {
+                f32::NEG_INFINITY
+            } else {
+                self.scalars[k as usize]
+            },
+            hi: self
+                .scalars
+                .get((k + 1) as usize)
+                .copied()
+                .unwrap_or(f32::INFINITY),
         }
     }
 
-    /// [`GreyKnots::sample`], trying `near`'s interval first.
+    /// [`GreyKnots::sample`], trying `near`'s interval first: the same
+    /// sample. (A NaN, or `+inf` in the last interval, fails the range
+    /// test and is classified from scratch, to the same interval.)
     #[inline(always)]
     pub fn sample_near(&self, s: f32, near: &GreySample) -> GreySample {
-        let k = near.interval as isize;
-        let last = self.scalars.len() as isize - 1;
-        let above_start = k < 0 || self.scalars[k as usize] <= s;
-        let below_end = k >= last || s < self.scalars[(k + 1) as usize];
-        if above_start && below_end {
+        if near.lo <= s && s < near.hi {
             GreySample {
-                material: self.in_interval(k, s),
+                material: self.in_interval(near.interval as isize, s),
                 scalar: s,
-                interval: near.interval,
+                ..*near
             }
         } else {
             self.sample(s)
@@ -145,5 +158,56 @@ impl GreyKnots {
             |s| self.sample(s).material,
             piece,
         )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::knots::Material;
+
+    /// Classifying near any earlier sample gives the sample classified
+    /// from scratch, to the bit, for scalars in, between, at and beyond
+    /// the knots (a step among them), infinities and NaN.
+    #[test]
+    fn sample_near_is_sample() {
+        let grey = |v: f32| Vec3A::splat(v);
+        let knots = TfKnots::from_materials(
+            [(0.0, 0.1), (0.5, 0.9), (0.5, 0.3), (1.25, 2.0), (2.0, 0.0)]
+                .into_iter()
+                .map(|(x, v)| {
+                    let m = Material {
+                        lum: Vec3A::new(v, 1.0 - v, 0.5),
+                        tau: grey(v),
+                        alpha: grey(v * 0.5),
+                    };
+                    (x, m)
+                })
+                .collect(),
+        );
+        let grey_knots = GreyKnots::new(&knots, Lane::Tau).expect("grey knots");
+        let mut values: Vec<f32> = (-20..=60).map(|i| i as f32 * 0.05).collect();
+        values.extend([
+            0.0,
+            0.5,
+            1.25,
+            2.0,
+            -0.0,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+        ]);
+        for &from in &values {
+            let near = grey_knots.sample(from);
+            for &s in &values {
+                let (a, b) = (grey_knots.sample_near(s, &near), grey_knots.sample(s));
+                assert_eq!(a.interval, b.interval, "{s} near {from}");
+                assert_eq!(
+                    a.material.to_array().map(f32::to_bits),
+                    b.material.to_array().map(f32::to_bits),
+                    "{s} near {from}"
+                );
+            }
+        }
     }
 }
