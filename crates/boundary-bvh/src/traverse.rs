@@ -4,7 +4,7 @@ use glam::Vec3;
 
 use crate::build::BoundaryBvh;
 use crate::slab::RaySlab;
-use crate::watertight::{cross_triangle, RayFrame};
+use crate::watertight::{crossing_distance, edge_sign, RayFrame};
 use crate::{is_better, query_is_valid, EntryHit};
 
 /// Inline stack capacity. Traversal descends into the nearer child and
@@ -71,12 +71,14 @@ impl Search<'_> {
     #[inline(always)]
     fn consider(&mut self, face: u32, [a, b, c]: [Vec3; 3]) {
         let ray = self.ray;
-        let Some(crossing) = cross_triangle(ray.project(a), ray.project(b), ray.project(c)) else {
+        let (a, b, c) = (ray.project(a), ray.project(b), ray.project(c));
+        // `cross_triangle`'s test, stopping at the first edge that rules out
+        // an entry (all three signs negative), before the distance.
+        if edge_sign(a, b) >= 0 || edge_sign(b, c) >= 0 || edge_sign(c, a) >= 0 {
             return;
-        };
-        let t = crossing.t;
-        if crossing.entering
-            && t >= self.t_min
+        }
+        let t = crossing_distance(a, b, c);
+        if t >= self.t_min
             && t <= self.t_max
             && is_better(t, face, self.best)
             && !self.skip.contains(&face)
