@@ -4,7 +4,7 @@ use glam::Vec3;
 
 use crate::build::BoundaryBvh;
 use crate::slab::RaySlab;
-use crate::watertight::{crossing_distance, edge_sign, RayFrame};
+use crate::watertight::{entry_distance, RayFrame};
 use crate::{is_better, query_is_valid, EntryHit};
 
 /// Inline stack capacity. Traversal descends into the nearer child and
@@ -71,13 +71,9 @@ impl Search<'_> {
     #[inline(always)]
     fn consider(&mut self, face: u32, [a, b, c]: [Vec3; 3]) {
         let ray = self.ray;
-        let (a, b, c) = (ray.project(a), ray.project(b), ray.project(c));
-        // `cross_triangle`'s test, stopping at the first edge that rules out
-        // an entry (all three signs negative), before the distance.
-        if edge_sign(a, b) >= 0 || edge_sign(b, c) >= 0 || edge_sign(c, a) >= 0 {
+        let Some(t) = entry_distance(ray.project(a), ray.project(b), ray.project(c)) else {
             return;
-        }
-        let t = crossing_distance(a, b, c);
+        };
         if t >= self.t_min
             && t <= self.t_max
             && is_better(t, face, self.best)

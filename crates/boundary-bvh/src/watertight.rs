@@ -114,6 +114,18 @@ pub fn cross_triangle(a: RayPoint, b: RayPoint, c: RayPoint) -> Option<Crossing>
     })
 }
 
+/// Where the ray enters through triangle `(a, b, c)` (counter-clockwise
+/// seen from outside), if it does: [`cross_triangle`]'s distance when its
+/// crossing is entering, found by stopping at the first edge sign that rules
+/// an entry out (the same answer, with fewer steps for faces it misses).
+#[inline(always)]
+pub fn entry_distance(a: RayPoint, b: RayPoint, c: RayPoint) -> Option<f32> {
+    if edge_sign(a, b) >= 0 || edge_sign(b, c) >= 0 || edge_sign(c, a) >= 0 {
+        return None;
+    }
+    Some(crossing_distance(a, b, c))
+}
+
 /// Distance along the ray to the plane of `(a, b, c)` where the ray crosses
 /// it, from barycentric weights of the projected triangle. Clamped into the
 /// range of the vertex distances so rounding cannot move it off the face.

@@ -5,9 +5,11 @@ use std::time::{Duration, Instant};
 
 use glam::Vec3;
 use rayon::prelude::*;
+use tetray_boundary_bvh::watertight::RayFrame;
 use tetray_integrate::{KernelVisitor, SampledSegment, ScalarIntegrator, SegmentKernel, Typed};
 
 use crate::camera::{Camera, CameraError, PixelRays};
+use crate::entries::EntryBins;
 use crate::image::{Image, ImageError};
 use crate::scene::Scene;
 use crate::walk::{RayCounters, SegmentIntegrator, WalkLimits, Walker};
@@ -142,7 +144,10 @@ pub fn render_cpu_with_progress<I: SegmentIntegrator + ?Sized>(
     let mut job = Frame::new(scene, camera, &rays, integrator, opts);
     job.progress = progress;
     let start = Instant::now();
-    let mut stats = in_pool(opts.threads, || job.run(&mut image.rgba))?;
+    let mut stats = in_pool(opts.threads, || {
+        job.entries = EntryBins::new(scene, &rays, job.width, job.height, job.eye_inside, TILE);
+        job.run(&mut image.rgba)
+    })?;
     stats.elapsed = start.elapsed();
     stats.eye_inside_bounds = job.eye_inside;
     Ok(RenderOutput { image, stats })
@@ -267,6 +272,9 @@ pub(crate) struct Frame<'a, I: ?Sized> {
     large: bool,
     /// Whether the walk runs as compiled for x86-64-v3 (see [`wide_cpu`]).
     wide: bool,
+    /// The boundary faces binned by tile, where rays take their entries
+    /// from per-pixel lists instead of the BVH ([`crate::entries`]).
+    entries: Option<EntryBins>,
     pub width: usize,
     pub height: usize,
 }
@@ -298,6 +306,7 @@ impl<'a, I: SegmentIntegrator + ?Sized> Frame<'a, I> {
             rows_done: AtomicUsize::new(0),
             large: scene.tet_count() >= LARGE_MESH_TETS,
             wide: wide_cpu(),
+            entries: None,
             width: opts.width as usize,
             height: opts.height as usize,
         }
@@ -337,7 +346,12 @@ pub fn wide_cpu() -> bool {
 impl<I: SegmentIntegrator + ?Sized> Frame<'_, I> {
     /// Starts `walker` on the ray of pixel `(x, y)`.
     pub(crate) fn start(&self, walker: &mut Walker<I::Sample>, x: usize, y: usize) {
-        let ray = self.rays.ray(x as u32, y as u32);
+        self.start_ray(walker, self.rays.ray(x as u32, y as u32));
+    }
+
+    /// Starts `walker` on `ray`, one of the frame's pixel rays.
+    #[inline(always)]
+    fn start_ray(&self, walker: &mut Walker<I::Sample>, ray: RayFrame) {
         // A ray whose origin may be inside the mesh walks from the first
         // entry of its whole line (behind the origin too) so it starts in
         // the cell holding the origin.
@@ -407,12 +421,30 @@ impl<I: SegmentIntegrator + ?Sized> Frame<'_, I> {
             (0..band_rows)
                 .flat_map(move |dy| (x0..(x0 + TILE).min(self.width)).map(move |x| (x, dy)))
         });
+        // The entry lists of the tile being started (see `crate::entries`).
+        let (mut lists, mut frames, mut tile_x0) = (Vec::new(), Vec::new(), usize::MAX);
+        let mut start = |walker: &mut Walker<I::Sample>, x: usize, dy: usize| {
+            let Some(bins) = &self.entries else {
+                self.start(walker, x, y0 + dy);
+                return;
+            };
+            let x0 = x / TILE * TILE;
+            let w = (x0 + TILE).min(self.width) - x0;
+            if tile_x0 != x0 {
+                let (origin, size) = ((x0, y0), (w, band_rows));
+                bins.fill_tile(self.rays, origin, size, &mut lists, &mut frames);
+                tile_x0 = x0;
+            }
+            let index = dy * w + x - x0;
+            self.start_ray(walker, frames[index]);
+            walker.use_entries(&lists[index]);
+        };
         let mut slots: [(Walker<I::Sample>, usize); N] =
             std::array::from_fn(|_| (new_walker(), usize::MAX));
         let mut active = 0;
         for slot in &mut slots {
             if let Some((x, dy)) = pixels.next() {
-                self.start(&mut slot.0, x, y0 + dy);
+                start(&mut slot.0, x, dy);
                 slot.1 = dy * self.width + x;
                 active += 1;
             }
@@ -441,7 +473,7 @@ impl<I: SegmentIntegrator + ?Sized> Frame<'_, I> {
                 finish(walker, *index);
                 match pixels.next() {
                     Some((x, dy)) => {
-                        self.start(walker, x, y0 + dy);
+                        start(walker, x, dy);
                         *index = dy * self.width + x;
                     }
                     None => {
@@ -486,9 +518,11 @@ mod tests {
     }
 
     /// The large-mesh walk (the records of the cells a ray may enter next
-    /// prefetched) and the x86-64-v3 build of either
-    /// give the small-mesh walk's image and counters bit for bit, on a
-    /// mesh with a hole (re-entries) from outside and from inside.
+    /// prefetched), the x86-64-v3 build of either, and each with its
+    /// entries from per-pixel lists instead of the BVH, give the
+    /// small-mesh walk's image and counters bit for bit, on a mesh with a
+    /// hole (re-entries) from outside and from inside (perspective, and
+    /// orthographic with the view plane through the mesh).
     #[test]
     fn prefetching_walk_gives_the_same_bits() {
         let (lo, hi) = (Vec3::ZERO, Vec3::ONE);
@@ -512,20 +546,32 @@ mod tests {
             position: Vec3::new(0.5, 0.5, 0.1),
             ..outside
         };
+        let through = Camera {
+            position: Vec3::new(0.5, 0.45, 0.5),
+            parallel_scale: Some(0.9),
+            ..outside
+        };
         let opts = RenderOptions {
             width: 45,
             height: 38,
             ..RenderOptions::default()
         };
-        for camera in [outside, inside] {
+        for camera in [outside, inside, through] {
             let rays = camera.pixel_rays(opts.width, opts.height).unwrap();
             let mut frame = Frame::new(&scene, &camera, &rays, &Glow, &opts);
+            let (w, h, eye_inside) = (frame.width, frame.height, frame.eye_inside);
+            let lists = || EntryBins::new(&scene, &rays, w, h, eye_inside, TILE);
+            assert_eq!(lists().is_some(), camera != inside);
             let mut images = Vec::new();
             // Both walks, each as the baseline build and as x86-64-v3's
-            // (where the CPU has it; the baseline otherwise).
-            for (large, wide) in [(false, false), (true, false), (false, true), (true, true)] {
+            // (where the CPU has it; the baseline otherwise), each with
+            // and without entry lists.
+            let builds = [(false, false), (true, false), (false, true), (true, true)];
+            for ((large, wide), entries) in builds.into_iter().flat_map(|b| [(b, false), (b, true)])
+            {
                 frame.large = large;
                 frame.wide = wide;
+                frame.entries = if entries { lists() } else { None };
                 let mut pixels = vec![[0.0f32; 4]; 45 * 38];
                 let stats = frame.run(&mut pixels);
                 images.push((pixels, stats));

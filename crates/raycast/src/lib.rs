@@ -12,6 +12,7 @@
 
 pub mod camera;
 mod cpu;
+mod entries;
 mod face;
 mod fragment;
 pub mod image;

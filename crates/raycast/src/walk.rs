@@ -10,6 +10,7 @@ use tetray_integrate::fastmath::max_f32;
 use tetray_integrate::SampledSegment;
 use tetray_mesh::FACE_VERTICES;
 
+use crate::entries::EntryList;
 use crate::face::{local_index, Face, Vertex};
 use crate::scene::{Scene, FINAL_EXIT};
 
@@ -221,6 +222,9 @@ pub(crate) struct Walker<S> {
     /// (a ray grazing a pinch point would otherwise loop).
     skip: Vec<u32>,
     skip_t: f32,
+    /// The ray's entries, where the frame found them all beforehand
+    /// ([`crate::entries`]); otherwise the BVH is asked.
+    entries: Option<EntryList>,
     tet: usize,
     f_in: usize,
     /// Distance and scalar at the exit of the step in progress.
@@ -254,6 +258,7 @@ impl<S: Copy + Default> Walker<S> {
             t_cursor: 0.0,
             skip: Vec::new(),
             skip_t: f32::NAN,
+            entries: None,
             tet: 0,
             f_in: 0,
             t_exit: 0.0,
@@ -305,8 +310,17 @@ impl<S: Copy + Default> Walker<S> {
         self.t_cursor = t_start;
         self.skip.clear();
         self.skip_t = f32::NAN;
+        self.entries = None;
         self.intervals.clear();
         self.interval_segments = 0;
+    }
+
+    /// Answers the started ray's entry queries from `list` (its pixel's
+    /// entries, see [`crate::entries`]) when it holds them all.
+    pub fn use_entries(&mut self, list: &EntryList) {
+        if list.is_complete() {
+            self.entries = Some(*list);
+        }
     }
 
     /// One BVH query or one tetrahedron, its segment integrated alone;
@@ -372,10 +386,13 @@ impl<S: Copy + Default> Walker<S> {
         } else {
             self.t_cursor
         };
-        let Some(hit) = scene
-            .bvh
-            .first_entry(&self.ray, t_query, f32::INFINITY, &self.skip)
-        else {
+        let found = match &self.entries {
+            Some(list) => list.first_entry(t_query, f32::INFINITY, &self.skip),
+            None => scene
+                .bvh
+                .first_entry(&self.ray, t_query, f32::INFINITY, &self.skip),
+        };
+        let Some(hit) = found else {
             self.phase = Phase::Done;
             return;
         };
