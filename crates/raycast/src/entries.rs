@@ -35,12 +35,14 @@ pub(crate) const LIST_LEN: usize = 8;
 const MAX_TESTS_PER_PIXEL: usize = 24;
 
 /// Pixels per boundary face below which a frame keeps the BVH: projecting
-/// every face costs more than the queries save. Blunt Fin PPI (13 514
-/// faces), alternating runs, min of frames: 128 x 128 (1.2 pixels per
-/// face) 8.1-9.2 ms with the BVH against 9.4-10.1 with lists; 256 x 256
-/// (4.8) 25.6-26.8 against 25.2-25.6; 512 x 512 (19) 98.5-102.3 against
-/// 93.3-96.9.
-const MIN_PIXELS_PER_FACE: usize = 3;
+/// every face costs more than the queries save. PPI, alternating runs,
+/// min of frames, BVH against lists: Blunt Fin (13 514 faces) 128 x 128
+/// (1.2 pixels per face) 8.1-9.2 against 9.4-10.1 ms; 160 x 160 (1.9)
+/// 11.4-12.7 against 11.4-12.7; 200 x 200 (3.0) 15.8-16.3 against
+/// 16.2-16.7; 256 x 256 (4.8) 25.6-26.8 against 25.2-25.6; 512 x 512 (19)
+/// 98.5-102.3 against 93.3-96.9; the 1 M torus shell (88 944 faces, with
+/// more re-entries) 512 x 512 (2.9) 133.2-135.7 against 107.5-110.0.
+const MIN_PIXELS_PER_FACE: f64 = 1.5;
 
 /// Boundary faces projected per parallel job (fewer are not worth a
 /// thread's start).
@@ -181,7 +183,8 @@ impl EntryBins {
     ) -> Option<EntryBins> {
         let ortho = rays.is_orthographic();
         let faces = scene.topology.boundary_faces.len();
-        if (eye_inside && !ortho) || width * height < MIN_PIXELS_PER_FACE * faces {
+        if (eye_inside && !ortho) || ((width * height) as f64) < MIN_PIXELS_PER_FACE * faces as f64
+        {
             return None;
         }
         let screen = Screen::new(rays);
