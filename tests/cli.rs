@@ -354,6 +354,27 @@ fn bench_prints_positive_rates() {
     assert!(f(&out["ms_per_frame_mad"]) >= 0.0);
     assert_eq!(out["steps_bound_hits"], 0);
     assert_eq!(out["walk_failures"], 0);
+    // 64 x 64 pixels for 13 514 boundary faces: the BVH answers entries.
+    assert_eq!(out["entry_lists_frames"], 0);
+}
+
+/// From 1.5 pixels per boundary face on, the CPU ray caster takes its
+/// entries from per-pixel lists, and says so.
+#[test]
+fn bench_reports_entry_lists() {
+    let dir = scratch("bench-lists");
+    let args = [
+        "bench",
+        "--frames",
+        "2",
+        "--size",
+        "160x128",
+        "--renderer",
+        "cpu",
+    ];
+    let out = json(&dir, &args);
+    assert_eq!(out["boundary_faces"], 13_514);
+    assert_eq!(out["entry_lists_frames"], 2, "{out}");
 }
 
 /// Each bad input: exit code 1, no panic, one error line naming the problem.

@@ -65,6 +65,9 @@ struct BenchJson {
     tet_steps_per_s: f64,
     steps_bound_hits: u64,
     walk_failures: u64,
+    /// Frames whose rays took their boundary entries from per-pixel lists
+    /// (CPU ray caster) rather than BVH queries.
+    entry_lists_frames: u32,
     load_s: f64,
     scene_s: f64,
     integrator_setup_s: f64,
@@ -121,6 +124,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     let mut stages: Vec<tetray_project::ProjectStats> = Vec::new();
     let (mut rays, mut segments, mut steps) = (0u64, 0u64, 0u64);
     let (mut bound_hits, mut failures) = (0u64, 0u64);
+    let mut entry_lists_frames = 0u32;
     for frame in 0..args.frames {
         let output = engine
             .render(&setup, &camera, &args.walk, args.size, None)
@@ -132,6 +136,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         steps += stats.steps;
         bound_hits += stats.steps_bound_hits;
         failures += stats.walk_failures;
+        entry_lists_frames += u32::from(stats.entry_lists);
         stages.extend(stats.project);
         camera.azimuth(orbit_step).context("orbiting the camera")?;
         camera
@@ -185,6 +190,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         tet_steps_per_s: per_s(steps as f64),
         steps_bound_hits: bound_hits,
         walk_failures: failures,
+        entry_lists_frames,
         load_s: setup.load_time.as_secs_f64(),
         scene_s: setup.scene_time.as_secs_f64(),
         integrator_setup_s: setup.integrator_time.as_secs_f64(),

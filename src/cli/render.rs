@@ -79,12 +79,17 @@ pub fn describe_stats(stats: &FrameStats, (width, height): (u32, u32)) -> String
     let seconds = stats.elapsed.as_secs_f64();
     format!(
         "rendered {width}x{height} in {seconds:.3} s: {} rays, {} hit the mesh, {} segments, \
-         {} tetrahedra visited, {} boundary entries ({:.2} M segments/s)",
+         {} tetrahedra visited, {} boundary entries{} ({:.2} M segments/s)",
         stats.rays,
         stats.rays_hit,
         stats.segments,
         stats.steps,
         stats.entries,
+        if stats.entry_lists {
+            " from per-pixel lists"
+        } else {
+            ""
+        },
         stats.segments as f64 / seconds.max(1e-12) / 1e6
     )
 }

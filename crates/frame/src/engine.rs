@@ -44,6 +44,9 @@ pub struct FrameStats {
     pub entries: u64,
     pub steps_bound_hits: u64,
     pub walk_failures: u64,
+    /// The CPU ray caster took its rays' boundary entries from per-pixel
+    /// lists, not BVH queries.
+    pub entry_lists: bool,
     /// Render time: the GPU pass by timestamp queries where the adapter has
     /// them, else the wall time of the frame; for the projection, its sort
     /// and draw list (CPU) plus its render pass.
@@ -233,6 +236,7 @@ impl Engine {
                         entries: s.entries,
                         steps_bound_hits: s.steps_bound_hits,
                         walk_failures: s.walk_failures,
+                        entry_lists: s.entry_lists,
                         elapsed: s.elapsed,
                         project: None,
                     },
@@ -260,6 +264,7 @@ impl Engine {
                         entries: s.entries,
                         steps_bound_hits: s.steps_bound_hits,
                         walk_failures: s.walk_failures,
+                        entry_lists: false,
                         elapsed: s.frame_time(),
                         project: None,
                     },

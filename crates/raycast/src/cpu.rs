@@ -66,6 +66,10 @@ pub struct RenderStats {
     /// Whether rays started inside the mesh's bounds (and were integrated
     /// from their origin, walking from the first entry behind it).
     pub eye_inside_bounds: bool,
+    /// Whether rays took their boundary entries from per-pixel lists made
+    /// for the frame instead of BVH queries (the same entries; see
+    /// `crates/raycast/src/entries.rs` for when the lists are made).
+    pub entry_lists: bool,
     pub elapsed: Duration,
 }
 
@@ -150,6 +154,7 @@ pub fn render_cpu_with_progress<I: SegmentIntegrator + ?Sized>(
     })?;
     stats.elapsed = start.elapsed();
     stats.eye_inside_bounds = job.eye_inside;
+    stats.entry_lists = job.entries.is_some();
     Ok(RenderOutput { image, stats })
 }
 
