@@ -35,6 +35,15 @@ pub struct EntryHit {
     pub t: f32,
 }
 
+impl EntryHit {
+    /// Whether this hit comes before `other` in every query's order:
+    /// nearer, or as near with a lower face index.
+    #[inline(always)]
+    pub fn precedes(self, other: EntryHit) -> bool {
+        self.t < other.t || (self.t == other.t && self.face < other.face)
+    }
+}
+
 /// Why a BVH could not be built or flattened.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum BvhError {
@@ -90,8 +99,5 @@ pub(crate) fn query_is_valid(ray: &watertight::RayFrame, t_min: f32, t_max: f32)
 /// lower face index, so every traversal order returns the same hit.
 #[inline(always)]
 pub(crate) fn is_better(t: f32, face: u32, best: Option<EntryHit>) -> bool {
-    match best {
-        None => true,
-        Some(b) => t < b.t || (t == b.t && face < b.face),
-    }
+    best.is_none_or(|b| EntryHit { face, t }.precedes(b))
 }

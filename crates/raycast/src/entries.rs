@@ -28,10 +28,10 @@ use crate::scene::Scene;
 pub(crate) const LIST_LEN: usize = 8;
 
 /// Candidate tests (one face against one pixel's ray, about 60
-/// instructions) per pixel above which the lists cost more than the BVH
-/// queries they replace (about 1300 instructions each, 1.6 per pixel on the
-/// Blunt Fin): a mesh with far more boundary faces than pixels keeps the
-/// BVH.
+/// instructions; counted by the faces' widened boxes, an upper bound) per
+/// pixel above which the lists may cost more than the BVH queries they
+/// replace (about 1300 instructions each, 1.6 per pixel on the Blunt Fin):
+/// such a frame keeps the BVH.
 const MAX_TESTS_PER_PIXEL: usize = 24;
 
 /// Pixels per boundary face below which a frame keeps the BVH: projecting
@@ -81,7 +81,7 @@ impl EntryList {
             return;
         }
         let mut i = len;
-        while i > 0 && before(hit, self.hits[i - 1]) {
+        while i > 0 && hit.precedes(self.hits[i - 1]) {
             self.hits[i] = self.hits[i - 1];
             i -= 1;
         }
@@ -101,11 +101,6 @@ impl EntryList {
             .find(|h| h.t >= t_min && h.t <= t_max && !skip.contains(&h.face))
             .copied()
     }
-}
-
-/// The order of the BVH's tie-break: nearer, or as near with a lower face.
-fn before(a: EntryHit, b: EntryHit) -> bool {
-    a.t < b.t || (a.t == b.t && a.face < b.face)
 }
 
 /// A boundary face that may be entered, with the pixels it may cover.
@@ -182,9 +177,8 @@ impl EntryBins {
         tile: usize,
     ) -> Option<EntryBins> {
         let ortho = rays.is_orthographic();
-        let faces = scene.topology.boundary_faces.len();
-        if (eye_inside && !ortho) || ((width * height) as f64) < MIN_PIXELS_PER_FACE * faces as f64
-        {
+        let face_count = scene.topology.boundary_faces.len() as f64;
+        if (eye_inside && !ortho) || ((width * height) as f64) < MIN_PIXELS_PER_FACE * face_count {
             return None;
         }
         let screen = Screen::new(rays);
@@ -455,8 +449,7 @@ mod tests {
     use crate::camera::Camera;
     use crate::scenes::{add_field, box_grid, hollow_box, jittered_box, merge, CellSplit};
 
-    fn scene(mesh: tetray_mesh::TetMesh) -> Scene {
-        let mut mesh = mesh;
+    fn scene(mut mesh: tetray_mesh::TetMesh) -> Scene {
         add_field(&mut mesh, "s", crate::scenes::ScalarSpec::Constant(1.0));
         let topology = Topology::build(&mesh).unwrap();
         Scene::new(mesh, topology, "s", Default::default()).unwrap()
