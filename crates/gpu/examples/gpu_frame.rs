@@ -78,6 +78,20 @@ fn main() -> anyhow::Result<()> {
         traffic.tet_bytes as f64 / steps,
         traffic.point_bytes as f64 / steps
     );
+    let segments = twin_stats[tetray_gpu::layout::STAT_SEGMENTS_LO] as f64;
+    let queries = traffic.bvh_queries as f64;
+    let bvh = (traffic.bvh_bytes + traffic.bvh_point_bytes) as f64;
+    let all = bvh + (traffic.tet_bytes + traffic.point_bytes) as f64;
+    println!(
+        "entry queries: {queries} ({:.2} per ray), {:.0} bytes each (BVH {:.0}, points {:.0}); \
+         all traffic {:.1} bytes per segment, of which entries {:.1}",
+        queries / f64::from(size * size),
+        bvh / queries,
+        traffic.bvh_bytes as f64 / queries,
+        traffic.bvh_point_bytes as f64 / queries,
+        all / segments,
+        bvh / segments
+    );
     let compare = |name: &str, a: &tetray_raycast::Image, b: &tetray_raycast::Image| {
         let mut worst = 0.0f32;
         let mut differing = 0;

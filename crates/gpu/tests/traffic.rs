@@ -2,7 +2,8 @@
 //! kernel's one for one): a step carries the three vertices of the face it
 //! crosses over from the previous cell and reads one new point, so the walk
 //! reads at most 48 bytes per tetrahedron stepped (vertex ids, neighbours,
-//! one point) instead of 96 with all four points reloaded.
+//! one point) instead of 96 with all four points reloaded. The entry
+//! queries' reads of the BVH are counted beside it.
 
 use tetray_gpu::twin::{render, render_traffic};
 use tetray_gpu::{GpuRenderOptions, IntegratorData, SceneData};
@@ -76,4 +77,27 @@ fn a_step_reads_one_new_point() {
     // Measured 48.6 (the entries' whole cells on top of 48); reloading all
     // four points would be about 96.
     assert!(per_step < 56.0, "{per_step} mesh bytes per step");
+
+    // Every ray asks at least once; every query but a ray's last finds an
+    // entry. Each query reads at least the root's two records, and each
+    // face tested reads three points.
+    let queries = traffic.bvh_queries;
+    assert!(
+        (entries.max(rays)..=entries + rays).contains(&queries),
+        "{queries} queries for {entries} entries of {rays} rays"
+    );
+    assert!(traffic.bvh_bytes >= 2 * RECORD * queries);
+    assert_eq!(traffic.bvh_point_bytes % (3 * RECORD), 0);
+    assert!(traffic.bvh_point_bytes > 0, "entries test faces");
+    let segments = stats[tetray_gpu::layout::STAT_SEGMENTS_LO];
+    eprintln!(
+        "{queries} entry queries, {:.0} bytes each (BVH {:.0}, points {:.0}); \
+         {:.1} bytes per segment in all",
+        (traffic.bvh_bytes + traffic.bvh_point_bytes) as f64 / queries as f64,
+        traffic.bvh_bytes as f64 / queries as f64,
+        traffic.bvh_point_bytes as f64 / queries as f64,
+        (traffic.bvh_bytes + traffic.bvh_point_bytes + traffic.tet_bytes + traffic.point_bytes)
+            as f64
+            / segments as f64
+    );
 }

@@ -4,7 +4,7 @@
 use glam::{UVec3, Vec3};
 
 use super::predicate::{crossing, edge_sign, project, Ray};
-use super::Inputs;
+use super::{Inputs, Traffic, RECORD_BYTES};
 
 const STACK_SIZE: usize = 64;
 const PAD_REL: f32 = 1.525_878_9e-5;
@@ -72,7 +72,8 @@ fn node_bounds(input: &Inputs, i: u32) -> (Vec3, Vec3) {
 }
 
 /// Boundary face `f`: its tetrahedron << 2 | local face.
-pub fn face_entry(input: &Inputs, f: u32) -> u32 {
+pub fn face_entry(input: &Inputs, f: u32, traffic: &mut Traffic) -> u32 {
+    traffic.bvh_bytes += 4;
     input.bvh[(input.params.face_offset + f / 4) as usize][(f % 4) as usize]
 }
 
@@ -95,15 +96,27 @@ impl Skip {
     }
 }
 
-pub fn first_entry(input: &Inputs, ray: &Ray, t_min: f32, t_max: f32, skip: &Skip) -> Entry {
+/// The kernel's query, its loads of the BVH array and of the points counted
+/// in `traffic` (a node's two records, its children's bounds, a leaf's
+/// face records and their three points each).
+pub fn first_entry(
+    input: &Inputs,
+    ray: &Ray,
+    t_min: f32,
+    t_max: f32,
+    skip: &Skip,
+    traffic: &mut Traffic,
+) -> Entry {
     let params = input.params;
     let mut best = Entry {
         found: false,
         face: 0,
         t: t_max,
     };
+    traffic.bvh_queries += 1;
     let slab = make_slab(ray, params.scene_abs_max);
     let (rmin, rmax) = node_bounds(input, 0);
+    traffic.bvh_bytes += 2 * RECORD_BYTES;
     if slab_entry(&slab, rmin, rmax, t_min, t_max).is_none() {
         return best;
     }
@@ -114,10 +127,13 @@ pub fn first_entry(input: &Inputs, ray: &Ray, t_min: f32, t_max: f32, skip: &Ski
     for _ in 0..params.prim_offset {
         let head = input.bvh[2 * current as usize];
         let count = input.bvh[2 * current as usize + 1][3];
+        traffic.bvh_bytes += 2 * RECORD_BYTES;
         let mut next = None;
         if count > 0 {
             for slot in head[3]..head[3] + count {
                 let prim = input.bvh[(params.prim_offset + slot) as usize];
+                traffic.bvh_bytes += RECORD_BYTES;
+                traffic.bvh_point_bytes += 3 * RECORD_BYTES;
                 let p = |i: usize| project(ray, input.point(prim[i]).truncate());
                 let (a, b, c) = (p(0), p(1), p(2));
                 let (sab, sbc, sca) = (edge_sign(a, b), edge_sign(b, c), edge_sign(c, a));
@@ -138,6 +154,7 @@ pub fn first_entry(input: &Inputs, ray: &Ray, t_min: f32, t_max: f32, skip: &Ski
             let t_hi = best.t;
             let (lmin, lmax) = node_bounds(input, left);
             let (qmin, qmax) = node_bounds(input, left + 1);
+            traffic.bvh_bytes += 4 * RECORD_BYTES;
             let hl = slab_entry(&slab, lmin, lmax, t_min, t_hi);
             let hr = slab_entry(&slab, qmin, qmax, t_min, t_hi);
             next = match (hl, hr) {

@@ -241,14 +241,20 @@ struct Counters {
     traffic: Traffic,
 }
 
-/// Bytes the kernel reads from the mesh's arrays (the tetrahedra's vertex
-/// and neighbour records, the points), counted at each of the twin's loads,
-/// which are the kernel's one for one. The BVH's and the integrator's small
-/// tables are not counted.
+/// Bytes the kernel reads, counted at each of the twin's loads, which are
+/// the kernel's one for one: in the walk, from the mesh's arrays (the
+/// tetrahedra's vertex and neighbour records, the points); in the entry
+/// queries, from the BVH array (nodes, leaf faces, the face-to-cell map)
+/// and the points of the faces tested. The integrator's small tables are
+/// not counted.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct Traffic {
     pub tet_bytes: u64,
     pub point_bytes: u64,
+    pub bvh_bytes: u64,
+    pub bvh_point_bytes: u64,
+    /// Entry queries made (the last, missing one of a ray included).
+    pub bvh_queries: u64,
 }
 
 impl Traffic {
@@ -256,11 +262,14 @@ impl Traffic {
         Traffic {
             tet_bytes: self.tet_bytes + other.tet_bytes,
             point_bytes: self.point_bytes + other.point_bytes,
+            bvh_bytes: self.bvh_bytes + other.bvh_bytes,
+            bvh_point_bytes: self.bvh_point_bytes + other.bvh_point_bytes,
+            bvh_queries: self.bvh_queries + other.bvh_queries,
         }
     }
 }
 
-/// One record of the tetrahedron array or the point array.
+/// One record of the tetrahedron, point or BVH array.
 const RECORD_BYTES: u64 = 16;
 
 impl Counters {
@@ -313,7 +322,7 @@ fn cast_ray(input: &Inputs, px: u32, py: u32) -> (Vec4, Counters) {
         } else {
             t_cursor
         };
-        let entry = first_entry(input, &ray, t_query, FAR, &skip);
+        let entry = first_entry(input, &ray, t_query, FAR, &skip, &mut counters.traffic);
         if !entry.found {
             break;
         }
@@ -327,7 +336,7 @@ fn cast_ray(input: &Inputs, px: u32, py: u32) -> (Vec4, Counters) {
             skip.faces[skip.len] = entry.face;
             skip.len += 1;
         }
-        let code = face_entry(input, entry.face);
+        let code = face_entry(input, entry.face, &mut counters.traffic);
         let mut tet = code >> 2;
         let mut f_in = (code & 3) as usize;
         let mut cell = load_cell(input, &ray, tet, &mut counters.traffic);
