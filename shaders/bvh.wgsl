@@ -56,12 +56,19 @@ fn slab_entry(slab: Slab, bmin: vec3<f32>, bmax: vec3<f32>, t_lo: f32, t_hi: f32
     return BoxHit(near <= far, near);
 }
 
-fn node_min(i: u32) -> vec3<f32> {
-    return bitcast<vec3<f32>>(bvh[2u * i].xyz);
+// Node i's two records: its bounds, and in their fourth words its link
+// (first child, or first face slot) and face count (0 for an inner node).
+struct Node {
+    min: vec3<f32>,
+    max: vec3<f32>,
+    link: u32,
+    count: u32,
 }
 
-fn node_max(i: u32) -> vec3<f32> {
-    return bitcast<vec3<f32>>(bvh[2u * i + 1u].xyz);
+fn load_node(i: u32) -> Node {
+    let head = bvh[2u * i];
+    let tail = bvh[2u * i + 1u];
+    return Node(bitcast<vec3<f32>>(head.xyz), bitcast<vec3<f32>>(tail.xyz), head.w, tail.w);
 }
 
 // Boundary face f: its tetrahedron << 2 | local face.
@@ -94,23 +101,25 @@ fn skipped(skip: Skip, face: u32) -> bool {
 fn first_entry(ray: Ray, t_min: f32, t_max: f32, skip: Skip) -> Entry {
     var best = Entry(false, 0u, t_max);
     let slab = make_slab(ray);
-    if (!slab_entry(slab, node_min(0u), node_max(0u), t_min, t_max).hit) {
+    let root = load_node(0u);
+    if (!slab_entry(slab, root.min, root.max, t_min, t_max).hit) {
         return best;
     }
-    var stack_node: array<u32, STACK_SIZE>;
+    // A node is visited with its link and count, read with its bounds when
+    // its parent tested it: a visit loads only its children.
+    var stack_link: array<u32, STACK_SIZE>;
+    var stack_count: array<u32, STACK_SIZE>;
     var stack_t: array<f32, STACK_SIZE>;
     var stack_len = 0u;
-    var current = 0u;
+    var link = root.link;
+    var count = root.count;
     // Every node is visited at most once: bound the loop by twice the count
     // of entries in the node array region.
     let budget = params.prim_offset;
     for (var visits = 0u; visits < budget; visits++) {
-        let head = bvh[2u * current];
-        let tail = bvh[2u * current + 1u];
-        let count = tail.w;
-        var next = 0xffffffffu;
+        var found_next = false;
         if (count > 0u) {
-            for (var slot = head.w; slot < head.w + count; slot++) {
+            for (var slot = link; slot < link + count; slot++) {
                 let prim = bvh[params.prim_offset + slot];
                 let a = project(ray, point_at(prim.x).xyz);
                 let b = project(ray, point_at(prim.y).xyz);
@@ -128,32 +137,40 @@ fn first_entry(ray: Ray, t_min: f32, t_max: f32, skip: Skip) -> Entry {
                 }
             }
         } else {
-            let left = head.w;
             let t_hi = best.t;
-            let hl = slab_entry(slab, node_min(left), node_max(left), t_min, t_hi);
-            let hr = slab_entry(slab, node_min(left + 1u), node_max(left + 1u), t_min, t_hi);
+            let l = load_node(link);
+            let r = load_node(link + 1u);
+            let hl = slab_entry(slab, l.min, l.max, t_min, t_hi);
+            let hr = slab_entry(slab, r.min, r.max, t_min, t_hi);
             if (hl.hit && hr.hit) {
-                var near = left;
-                var far = left + 1u;
+                var near = l;
+                var far = r;
                 var t_far = hr.t;
                 if (hr.t < hl.t) {
-                    near = left + 1u;
-                    far = left;
+                    near = r;
+                    far = l;
                     t_far = hl.t;
                 }
                 if (stack_len < STACK_SIZE) {
-                    stack_node[stack_len] = far;
+                    stack_link[stack_len] = far.link;
+                    stack_count[stack_len] = far.count;
                     stack_t[stack_len] = t_far;
                     stack_len++;
                 }
-                next = near;
+                link = near.link;
+                count = near.count;
+                found_next = true;
             } else if (hl.hit) {
-                next = left;
+                link = l.link;
+                count = l.count;
+                found_next = true;
             } else if (hr.hit) {
-                next = left + 1u;
+                link = r.link;
+                count = r.count;
+                found_next = true;
             }
         }
-        if (next == 0xffffffffu) {
+        if (!found_next) {
             loop {
                 if (stack_len == 0u) {
                     return best;
@@ -162,12 +179,12 @@ fn first_entry(ray: Ray, t_min: f32, t_max: f32, skip: Skip) -> Entry {
                 // Inclusive: a subtree entered exactly at the best distance
                 // may still hold a lower face index.
                 if (stack_t[stack_len] <= best.t) {
-                    next = stack_node[stack_len];
+                    link = stack_link[stack_len];
+                    count = stack_count[stack_len];
                     break;
                 }
             }
         }
-        current = next;
     }
     return best;
 }

@@ -58,9 +58,19 @@ fn slab_entry(slab: &Slab, bmin: Vec3, bmax: Vec3, t_lo: f32, t_hi: f32) -> Opti
     (near <= far).then_some(near)
 }
 
-fn node_bounds(input: &Inputs, i: u32) -> (Vec3, Vec3) {
+/// Node `i`'s two records: its bounds, and in their fourth words its link
+/// (first child, or first face slot) and face count (0 for an inner node).
+struct Node {
+    min: Vec3,
+    max: Vec3,
+    link: u32,
+    count: u32,
+}
+
+fn load_node(input: &Inputs, i: u32, traffic: &mut Traffic) -> Node {
     let head = input.bvh[2 * i as usize];
     let tail = input.bvh[2 * i as usize + 1];
+    traffic.bvh_bytes += 2 * RECORD_BYTES;
     let v = |w: [u32; 4]| {
         Vec3::new(
             f32::from_bits(w[0]),
@@ -68,7 +78,12 @@ fn node_bounds(input: &Inputs, i: u32) -> (Vec3, Vec3) {
             f32::from_bits(w[2]),
         )
     };
-    (v(head), v(tail))
+    Node {
+        min: v(head),
+        max: v(tail),
+        link: head[3],
+        count: tail[3],
+    }
 }
 
 /// Boundary face `f`: its tetrahedron << 2 | local face.
@@ -97,8 +112,8 @@ impl Skip {
 }
 
 /// The kernel's query, its loads of the BVH array and of the points counted
-/// in `traffic` (a node's two records, its children's bounds, a leaf's
-/// face records and their three points each).
+/// in `traffic` (the root's records, an inner node's children's records, a
+/// leaf's face records and their three points each).
 pub fn first_entry(
     input: &Inputs,
     ray: &Ray,
@@ -115,22 +130,21 @@ pub fn first_entry(
     };
     traffic.bvh_queries += 1;
     let slab = make_slab(ray, params.scene_abs_max);
-    let (rmin, rmax) = node_bounds(input, 0);
-    traffic.bvh_bytes += 2 * RECORD_BYTES;
-    if slab_entry(&slab, rmin, rmax, t_min, t_max).is_none() {
+    let root = load_node(input, 0, traffic);
+    if slab_entry(&slab, root.min, root.max, t_min, t_max).is_none() {
         return best;
     }
-    let mut stack_node = [0u32; STACK_SIZE];
+    // A node is visited with its link and count, read with its bounds when
+    // its parent tested it: a visit loads only its children.
+    let mut stack_link = [0u32; STACK_SIZE];
+    let mut stack_count = [0u32; STACK_SIZE];
     let mut stack_t = [0f32; STACK_SIZE];
     let mut stack_len = 0usize;
-    let mut current = 0u32;
+    let (mut link, mut count) = (root.link, root.count);
     for _ in 0..params.prim_offset {
-        let head = input.bvh[2 * current as usize];
-        let count = input.bvh[2 * current as usize + 1][3];
-        traffic.bvh_bytes += 2 * RECORD_BYTES;
         let mut next = None;
         if count > 0 {
-            for slot in head[3]..head[3] + count {
+            for slot in link..link + count {
                 let prim = input.bvh[(params.prim_offset + slot) as usize];
                 traffic.bvh_bytes += RECORD_BYTES;
                 traffic.bvh_point_bytes += 3 * RECORD_BYTES;
@@ -150,29 +164,24 @@ pub fn first_entry(
                 }
             }
         } else {
-            let left = head[3];
             let t_hi = best.t;
-            let (lmin, lmax) = node_bounds(input, left);
-            let (qmin, qmax) = node_bounds(input, left + 1);
-            traffic.bvh_bytes += 4 * RECORD_BYTES;
-            let hl = slab_entry(&slab, lmin, lmax, t_min, t_hi);
-            let hr = slab_entry(&slab, qmin, qmax, t_min, t_hi);
+            let l = load_node(input, link, traffic);
+            let r = load_node(input, link + 1, traffic);
+            let hl = slab_entry(&slab, l.min, l.max, t_min, t_hi);
+            let hr = slab_entry(&slab, r.min, r.max, t_min, t_hi);
             next = match (hl, hr) {
                 (Some(tl), Some(tr)) => {
-                    let (near, far, t_far) = if tr < tl {
-                        (left + 1, left, tl)
-                    } else {
-                        (left, left + 1, tr)
-                    };
+                    let (near, far, t_far) = if tr < tl { (r, l, tl) } else { (l, r, tr) };
                     if stack_len < STACK_SIZE {
-                        stack_node[stack_len] = far;
+                        stack_link[stack_len] = far.link;
+                        stack_count[stack_len] = far.count;
                         stack_t[stack_len] = t_far;
                         stack_len += 1;
                     }
-                    Some(near)
+                    Some((near.link, near.count))
                 }
-                (Some(_), None) => Some(left),
-                (None, Some(_)) => Some(left + 1),
+                (Some(_), None) => Some((l.link, l.count)),
+                (None, Some(_)) => Some((r.link, r.count)),
                 (None, None) => None,
             };
         }
@@ -183,12 +192,12 @@ pub fn first_entry(
                 }
                 stack_len -= 1;
                 if stack_t[stack_len] <= best.t {
-                    next = Some(stack_node[stack_len]);
+                    next = Some((stack_link[stack_len], stack_count[stack_len]));
                     break;
                 }
             }
         }
-        current = next.unwrap_or(0);
+        (link, count) = next.unwrap_or((0, 0));
     }
     best
 }
