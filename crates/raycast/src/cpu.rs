@@ -149,12 +149,12 @@ pub fn render_cpu_with_progress<I: SegmentIntegrator + ?Sized>(
     job.progress = progress;
     let start = Instant::now();
     let mut stats = in_pool(opts.threads, || {
-        job.entries = EntryBins::new(scene, &rays, job.width, job.height, job.eye_inside, TILE);
+        job.bin_entries();
         job.run(&mut image.rgba)
     })?;
     stats.elapsed = start.elapsed();
     stats.eye_inside_bounds = job.eye_inside;
-    stats.entry_lists = job.entries.is_some();
+    stats.entry_lists = job.uses_entry_lists();
     Ok(RenderOutput { image, stats })
 }
 
@@ -315,6 +315,19 @@ impl<'a, I: SegmentIntegrator + ?Sized> Frame<'a, I> {
             width: opts.width as usize,
             height: opts.height as usize,
         }
+    }
+
+    /// Bins the boundary faces for per-pixel entry lists, where the frame
+    /// gains from them ([`EntryBins::new`], parallel: call it in the
+    /// frame's pool).
+    pub fn bin_entries(&mut self) {
+        let (w, h) = (self.width, self.height);
+        self.entries = EntryBins::new(self.scene, self.rays, w, h, self.eye_inside, TILE);
+    }
+
+    /// Whether rays take their entries from per-pixel lists.
+    pub fn uses_entry_lists(&self) -> bool {
+        self.entries.is_some()
     }
 }
 
@@ -497,7 +510,7 @@ impl<I: SegmentIntegrator + ?Sized> Frame<'_, I> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use glam::Vec3A;
     use tetray_mesh::Topology;
 
@@ -506,7 +519,7 @@ mod tests {
     use crate::walk::SegmentIntegrator;
 
     /// Light growing with the segment's length and scalars.
-    struct Glow;
+    pub(crate) struct Glow;
 
     impl SegmentIntegrator for Glow {
         type Sample = f32;

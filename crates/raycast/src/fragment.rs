@@ -54,7 +54,8 @@ pub struct FragmentOutput {
 
 /// Casts every pixel's ray through `scene` and keeps the light of each
 /// interval apart: one [`Fragment`] per interval in which a segment was
-/// integrated.
+/// integrated. Entries come from per-pixel lists where the frame gains from
+/// them, as in [`crate::render_cpu`] (the same entries as the BVH's).
 ///
 /// Early termination would cut a ray on what this mesh alone knows, so it
 /// is not applied: `opts.early_termination` must be 1. A ray stops inside
@@ -65,6 +66,17 @@ pub fn render_fragments<I: SegmentIntegrator + ?Sized>(
     camera: &Camera,
     integrator: &I,
     opts: &RenderOptions,
+) -> Result<FragmentOutput, RenderError> {
+    fragments_with(scene, camera, integrator, opts, true)
+}
+
+/// [`render_fragments`], with entry lists allowed or not.
+fn fragments_with<I: SegmentIntegrator + ?Sized>(
+    scene: &Scene,
+    camera: &Camera,
+    integrator: &I,
+    opts: &RenderOptions,
+    entry_lists: bool,
 ) -> Result<FragmentOutput, RenderError> {
     if opts.early_termination != 1.0 {
         return Err(RenderError::BadEarlyTermination(opts.early_termination));
@@ -78,6 +90,10 @@ pub fn render_fragments<I: SegmentIntegrator + ?Sized>(
     let (width, height) = (frame.width, frame.height);
     let start = Instant::now();
     let bands = in_pool(opts.threads, || {
+        if entry_lists {
+            frame.bin_entries();
+        }
+        let frame = &frame;
         (0..height.div_ceil(BAND_ROWS))
             .into_par_iter()
             .map(|band| {
@@ -107,6 +123,7 @@ pub fn render_fragments<I: SegmentIntegrator + ?Sized>(
     stats.elapsed = start.elapsed();
     let (lo, hi) = scene.bounds();
     stats.eye_inside_bounds = camera.is_inside_bounds(lo, hi);
+    stats.entry_lists = frame.uses_entry_lists();
     Ok(FragmentOutput { fragments, stats })
 }
 
@@ -134,4 +151,69 @@ pub fn render_scalar_fragments(
         camera,
         opts,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec3;
+    use tetray_mesh::Topology;
+
+    use super::*;
+    use crate::cpu::tests::Glow;
+    use crate::scenes::{add_field, hollow_box, CellSplit, ScalarSpec};
+
+    /// The fragments with entries from per-pixel lists are those with BVH
+    /// entries bit for bit, on a mesh with a hole (intervals that end and
+    /// begin again) seen from outside, from inside and by orthographic
+    /// rays starting inside it.
+    #[test]
+    fn entry_lists_give_the_same_fragments() {
+        let (lo, hi) = (Vec3::ZERO, Vec3::ONE);
+        let mut mesh =
+            hollow_box(lo, hi, [5, 4, 4], [1, 1, 1], [4, 3, 3], CellSplit::Five).unwrap();
+        add_field(
+            &mut mesh,
+            "s",
+            ScalarSpec::Linear {
+                offset: 0.5,
+                gradient: Vec3::new(1.0, -0.5, 0.25),
+            },
+        );
+        let topology = Topology::build(&mesh).unwrap();
+        let scene = Scene::new(mesh, topology, "s", Default::default()).unwrap();
+        let mut outside = Camera::reset_to_bounds(lo, hi).unwrap();
+        outside.azimuth(30.0).unwrap();
+        outside.elevation(20.0).unwrap();
+        outside.orthogonalize_view_up().unwrap();
+        let inside = Camera {
+            position: Vec3::new(0.5, 0.5, 0.1),
+            ..outside
+        };
+        let through = Camera {
+            position: Vec3::new(0.5, 0.45, 0.5),
+            parallel_scale: Some(0.9),
+            ..outside
+        };
+        let opts = RenderOptions {
+            width: 45,
+            height: 38,
+            ..RenderOptions::default()
+        };
+        for camera in [outside, inside, through] {
+            let with = fragments_with(&scene, &camera, &Glow, &opts, true).unwrap();
+            let without = fragments_with(&scene, &camera, &Glow, &opts, false).unwrap();
+            // A perspective eye inside the bounds keeps the BVH.
+            assert_eq!(with.stats.entry_lists, camera != inside);
+            assert!(!without.stats.entry_lists);
+            let (a, b) = (&with.fragments, &without.fragments);
+            assert!(with.stats.entries > with.stats.rays_hit, "rays re-enter");
+            assert!(a.len() >= with.stats.rays_hit as usize);
+            assert_eq!(
+                bytemuck::cast_slice::<_, u32>(a),
+                bytemuck::cast_slice::<_, u32>(b)
+            );
+            let counters = |s: &RenderStats| (s.segments, s.steps, s.entries);
+            assert_eq!(counters(&with.stats), counters(&without.stats));
+        }
+    }
 }
