@@ -155,12 +155,8 @@ pub fn render_scalar_fragments(
 
 #[cfg(test)]
 mod tests {
-    use glam::Vec3;
-    use tetray_mesh::Topology;
-
     use super::*;
-    use crate::cpu::tests::Glow;
-    use crate::scenes::{add_field, hollow_box, CellSplit, ScalarSpec};
+    use crate::cpu::tests::{holed_box_views, Glow};
 
     /// The fragments with entries from per-pixel lists are those with BVH
     /// entries bit for bit, on a mesh with a hole (intervals that end and
@@ -168,32 +164,7 @@ mod tests {
     /// rays starting inside it.
     #[test]
     fn entry_lists_give_the_same_fragments() {
-        let (lo, hi) = (Vec3::ZERO, Vec3::ONE);
-        let mut mesh =
-            hollow_box(lo, hi, [5, 4, 4], [1, 1, 1], [4, 3, 3], CellSplit::Five).unwrap();
-        add_field(
-            &mut mesh,
-            "s",
-            ScalarSpec::Linear {
-                offset: 0.5,
-                gradient: Vec3::new(1.0, -0.5, 0.25),
-            },
-        );
-        let topology = Topology::build(&mesh).unwrap();
-        let scene = Scene::new(mesh, topology, "s", Default::default()).unwrap();
-        let mut outside = Camera::reset_to_bounds(lo, hi).unwrap();
-        outside.azimuth(30.0).unwrap();
-        outside.elevation(20.0).unwrap();
-        outside.orthogonalize_view_up().unwrap();
-        let inside = Camera {
-            position: Vec3::new(0.5, 0.5, 0.1),
-            ..outside
-        };
-        let through = Camera {
-            position: Vec3::new(0.5, 0.45, 0.5),
-            parallel_scale: Some(0.9),
-            ..outside
-        };
+        let (scene, [outside, inside, through]) = holed_box_views();
         let opts = RenderOptions {
             width: 45,
             height: 38,
