@@ -74,14 +74,14 @@ fn main() -> anyhow::Result<()> {
     let steps = twin_stats[tetray_gpu::layout::STAT_STEPS_LO] as f64;
     println!(
         "kernel mesh traffic: {:.1} bytes per step (tetrahedra {:.1}, points {:.1})",
-        (traffic.tet_bytes + traffic.point_bytes) as f64 / steps,
+        traffic.walk_bytes() as f64 / steps,
         traffic.tet_bytes as f64 / steps,
         traffic.point_bytes as f64 / steps
     );
     let segments = twin_stats[tetray_gpu::layout::STAT_SEGMENTS_LO] as f64;
     let queries = traffic.bvh_queries as f64;
-    let bvh = (traffic.bvh_bytes + traffic.bvh_point_bytes) as f64;
-    let all = bvh + (traffic.tet_bytes + traffic.point_bytes) as f64;
+    let bvh = traffic.entry_bytes() as f64;
+    let all = bvh + traffic.walk_bytes() as f64;
     println!(
         "entry queries: {queries} ({:.2} per ray), {:.0} bytes each (BVH {:.0}, points {:.0}); \
          all traffic {:.1} bytes per segment, of which entries {:.1}",

@@ -67,7 +67,7 @@ fn a_step_reads_one_new_point() {
     );
     // Vertex ids once per cell, neighbours once per step.
     assert!(traffic.tet_bytes <= RECORD * (entries + 2 * steps));
-    let per_step = (traffic.point_bytes + traffic.tet_bytes) as f64 / steps as f64;
+    let per_step = traffic.walk_bytes() as f64 / steps as f64;
     eprintln!(
         "Blunt Fin 48x48: {steps} steps, {entries} entries, {per_step:.1} mesh bytes per step \
          (points {:.1}, tetrahedra {:.1})",
@@ -93,11 +93,9 @@ fn a_step_reads_one_new_point() {
     eprintln!(
         "{queries} entry queries, {:.0} bytes each (BVH {:.0}, points {:.0}); \
          {:.1} bytes per segment in all",
-        (traffic.bvh_bytes + traffic.bvh_point_bytes) as f64 / queries as f64,
+        traffic.entry_bytes() as f64 / queries as f64,
         traffic.bvh_bytes as f64 / queries as f64,
         traffic.bvh_point_bytes as f64 / queries as f64,
-        (traffic.bvh_bytes + traffic.bvh_point_bytes + traffic.tet_bytes + traffic.point_bytes)
-            as f64
-            / segments as f64
+        (traffic.entry_bytes() + traffic.walk_bytes()) as f64 / segments as f64
     );
 }

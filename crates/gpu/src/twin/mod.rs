@@ -258,6 +258,16 @@ pub struct Traffic {
 }
 
 impl Traffic {
+    /// Bytes read by the walk: tetrahedra and points.
+    pub fn walk_bytes(&self) -> u64 {
+        self.tet_bytes + self.point_bytes
+    }
+
+    /// Bytes read by the entry queries: BVH and the faces' points.
+    pub fn entry_bytes(&self) -> u64 {
+        self.bvh_bytes + self.bvh_point_bytes
+    }
+
     fn add(self, other: Traffic) -> Traffic {
         Traffic {
             tet_bytes: self.tet_bytes + other.tet_bytes,

@@ -25,12 +25,6 @@ impl SegmentIntegrator for Glow {
     }
 }
 
-/// The large-mesh walk (the records of the cells a ray may enter next
-/// prefetched), the x86-64-v3 build of either, and each with its
-/// entries from per-pixel lists instead of the BVH, give the
-/// small-mesh walk's image and counters bit for bit, on a mesh with a
-/// hole (re-entries) from outside and from inside (perspective, and
-/// orthographic with the view plane through the mesh).
 /// A holed box (rays leave into the hole and re-enter) with a linear
 /// field, and three views of it: from outside, a perspective eye
 /// inside the mesh, and orthographic with the view plane through it.
@@ -63,6 +57,12 @@ pub(crate) fn holed_box_views() -> (Scene, [Camera; 3]) {
     (scene, [outside, inside, through])
 }
 
+/// The large-mesh walk (the records of the cells a ray may enter next
+/// prefetched), the x86-64-v3 build of either, and each with its
+/// entries from per-pixel lists instead of the BVH, give the
+/// small-mesh walk's image and counters bit for bit, on a mesh with a
+/// hole (re-entries) from outside and from inside (perspective, and
+/// orthographic with the view plane through the mesh).
 #[test]
 fn prefetching_walk_gives_the_same_bits() {
     let (scene, [outside, inside, through]) = holed_box_views();
@@ -74,9 +74,8 @@ fn prefetching_walk_gives_the_same_bits() {
     for camera in [outside, inside, through] {
         let rays = camera.pixel_rays(opts.width, opts.height).unwrap();
         let mut frame = Frame::new(&scene, &camera, &rays, &Glow, &opts);
-        let (w, h, eye_inside) = (frame.width, frame.height, frame.eye_inside);
-        let lists = || EntryBins::new(&scene, &rays, w, h, eye_inside, TILE);
-        assert_eq!(lists().is_some(), camera != inside);
+        frame.bin_entries();
+        assert_eq!(frame.uses_entry_lists(), camera != inside);
         let mut images = Vec::new();
         // Both walks, each as the baseline build and as x86-64-v3's
         // (where the CPU has it; the baseline otherwise), each with
@@ -85,7 +84,11 @@ fn prefetching_walk_gives_the_same_bits() {
         for ((large, wide), entries) in builds.into_iter().flat_map(|b| [(b, false), (b, true)]) {
             frame.large = large;
             frame.wide = wide;
-            frame.entries = if entries { lists() } else { None };
+            if entries {
+                frame.bin_entries();
+            } else {
+                frame.entries = None;
+            }
             let mut pixels = vec![[0.0f32; 4]; 45 * 38];
             let stats = frame.run(&mut pixels);
             images.push((pixels, stats));
