@@ -7,8 +7,8 @@ use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use glam::Vec3;
-use tetray_boundary_bvh::watertight::RayFrame;
 use tetray_boundary_bvh::{BoundaryBvh, BuildPreset};
+use tetray_core::watertight::RayFrame;
 use tetray_mesh::Topology;
 use tetray_raycast::scenes::{box_grid, CellSplit};
 use tetray_raycast::{CellOrder, Scene};

@@ -1,21 +1,11 @@
 // Shared declarations of the ray-casting kernel: parameters, bindings and
-// buffer accessors. The host concatenates common, predicate, bvh, integrate
-// and raycast (in that order) into one module.
+// buffer accessors. The host puts the method codes, params, common,
+// predicate, bvh, integrate and raycast (in that order) into one module
+// (tetray_gpu::shaders).
 
 // Per-frame parameters (host: tetray_gpu::layout::Params).
 struct Params {
-    // Camera: perspective rays start at `position` and run along
-    // `direction + offset`, orthographic rays start at `position + offset`
-    // and run along `direction`; offset = right * x + up * y, with
-    // x = (px + 0.5 - half_width) pixel, y = (half_height - py - 0.5) pixel.
-    position: vec3<f32>,
-    orthographic: u32,
-    right: vec3<f32>,
-    pixel: f32,
-    up: vec3<f32>,
-    half_width: f32,
-    direction: vec3<f32>,
-    half_height: f32,
+    view: ViewParams,
     bounds_min: vec3<f32>,
     // Perspective eye inside the mesh bounds: rays walk from their line's
     // first entry, behind the eye too.
@@ -25,21 +15,9 @@ struct Params {
     width: u32,
     height: u32,
     max_steps: u32,
-    method: u32,
     // Stop once the sum of the transmittance channels is at most this.
     stop_below_sum: f32,
-    // 1: every knot's attenuation and opacity is the same in all channels.
-    grey: u32,
-    split: u32,
-    knot_count: u32,
-    psi_size: u32,
-    inv_unit_distance: f32,
-    riemann_step: f32,
-    preint_size: u32,
-    preint_offset: u32,
-    preint_lo: f32,
-    preint_scale: f32,
-    preint_length: f32,
+    integrator: IntegratorParams,
     // Tetrahedra in `tets0` (the rest are in `tets1`), points likewise.
     tet_chunk: u32,
     point_chunk: u32,

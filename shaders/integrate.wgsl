@@ -5,20 +5,9 @@
 // I = I0 zeta + L_b (Psi - zeta) + L_f (1 - Psi).
 //
 // Shared by the ray caster and the cell projection (tetray_project): the
-// including module declares `params` with the integrator's members
-// (method, grey, split, knot_count, psi_size, inv_unit_distance,
-// riemann_step, preint_*), the `tables` storage array and the `psi_table`
-// texture.
-
-// Methods (host: tetray_gpu::layout::method_code).
-const METHOD_PPI: u32 = 0u;
-const METHOD_EXACT: u32 = 1u;
-const METHOD_AVERAGE: u32 = 2u;
-const METHOD_AVERAGE_OPACITY: u32 = 3u;
-const METHOD_LIN_AVG_OPACITY: u32 = 4u;
-const METHOD_LIN_OPACITY: u32 = 5u;
-const METHOD_PREINTEGRATED: u32 = 6u;
-const METHOD_RIEMANN: u32 = 7u;
+// including module declares `params` with an `integrator: IntegratorParams`
+// member (params.wgsl), the `tables` storage array and the `psi_table`
+// texture; the METHOD_* codes come first (tetray_core::Method::gpu_code).
 
 const SQRT_PI_2: f32 = 0.88622693;
 const ALPHA_MAX: f32 = 0.999999;
@@ -37,7 +26,7 @@ struct Sample {
 // Transfer-function interval k (from -1 to knot_count - 1): four entries
 // at 4 (k + 1): lum start + x0, lum delta + 1 / width, q start, q delta.
 fn in_interval(k: i32, s: f32) -> Sample {
-    let base = 4u * u32(clamp(k + 1, 0, i32(params.knot_count)));
+    let base = 4u * u32(clamp(k + 1, 0, i32(params.integrator.knot_count)));
     let head = tables[base];
     let slope = tables[base + 1u];
     let t = clamp((s - head.w) * slope.w, 0.0, 1.0);
@@ -56,7 +45,7 @@ fn knot_scalar(k: u32) -> f32 {
 // The number of knots at or below s, minus one.
 fn interval_up(s: f32) -> i32 {
     var lo = 0u;
-    var hi = params.knot_count;
+    var hi = params.integrator.knot_count;
     // At most 32 halvings for any u32 count.
     for (var i = 0u; i < 32u && lo < hi; i++) {
         let mid = (lo + hi) / 2u;
@@ -76,7 +65,7 @@ fn sample_at(s: f32) -> Sample {
 // sample_at, trying the interval of a nearby sample first.
 fn sample_near(s: f32, near: Sample) -> Sample {
     let k = near.interval;
-    let last = i32(params.knot_count) - 1;
+    let last = i32(params.integrator.knot_count) - 1;
     let above_start = k < 0 || knot_scalar(u32(k)) <= s;
     let below_end = k >= last || s < knot_scalar(u32(k + 1));
     if (above_start && below_end) {
@@ -101,11 +90,11 @@ fn then(front: Light, behind: Light) -> Light {
 // Bilinear lookup of the Psi table by (tau_b D, tau_f D): nodes uniform in
 // u = 1 - 1/sqrt(1 + tau D) (tetray_integrate::GammaSpacing::Quadratic).
 fn psi_lookup(a: f32, b: f32) -> f32 {
-    let last = f32(params.psi_size - 1u);
+    let last = f32(params.integrator.psi_size - 1u);
     let x = clamp(1.0 - 1.0 / sqrt(1.0 + a), 0.0, 1.0) * last;
     let y = clamp(1.0 - 1.0 / sqrt(1.0 + b), 0.0, 1.0) * last;
-    let i = min(u32(x), params.psi_size - 2u);
-    let j = min(u32(y), params.psi_size - 2u);
+    let i = min(u32(x), params.integrator.psi_size - 2u);
+    let j = min(u32(y), params.integrator.psi_size - 2u);
     let fx = x - f32(i);
     let fy = y - f32(j);
     let v00 = textureLoad(psi_table, vec2<u32>(i, j), 0).x;
@@ -275,7 +264,7 @@ fn exact_weights(a: f32, b: f32) -> vec2<f32> {
 // (zeta, Psi) of one channel for the method, from the end values of its
 // quantity (attenuation, or opacity) and the piece length.
 fn channel_weights(q_back: f32, q_front: f32, d: f32) -> vec2<f32> {
-    switch params.method {
+    switch params.integrator.method {
         case METHOD_PPI: {
             return ppi_weights(q_back * d, q_front * d);
         }
@@ -286,7 +275,7 @@ fn channel_weights(q_back: f32, q_front: f32, d: f32) -> vec2<f32> {
             return average_weights(q_back * d, q_front * d);
         }
         default: {
-            return opacity_weights(params.method, q_back, q_front, d * params.inv_unit_distance);
+            return opacity_weights(params.integrator.method, q_back, q_front, d * params.integrator.inv_unit_distance);
         }
     }
 }
@@ -295,7 +284,7 @@ fn channel_weights(q_back: f32, q_front: f32, d: f32) -> vec2<f32> {
 fn piece_light(front: Sample, back: Sample, d: f32) -> Light {
     var zeta: vec3<f32>;
     var psi: vec3<f32>;
-    if (params.grey == 1u) {
+    if (params.integrator.grey == 1u) {
         let w = channel_weights(back.q.x, front.q.x, d);
         zeta = vec3<f32>(w.x);
         psi = vec3<f32>(w.y);
@@ -312,13 +301,13 @@ fn piece_light(front: Sample, back: Sample, d: f32) -> Light {
 // A segment between two classified scalars, cut at the knots between them
 // (adaptive transfer-function sampling, section 4.3) unless split is off.
 fn split_light(front: Sample, back: Sample, length: f32) -> Light {
-    if (front.interval == back.interval || params.split == 0u) {
+    if (front.interval == back.interval || params.integrator.split == 0u) {
         return piece_light(front, back, length);
     }
     let span = back.s - front.s;
     let per_scalar = length / abs(span);
     let increasing = span > 0.0;
-    let last = i32(params.knot_count) - 1;
+    let last = i32(params.integrator.knot_count) - 1;
     // The interval holding the front scalar in the direction of travel.
     var k = front.interval;
     if (!increasing && k >= 0 && knot_scalar(u32(k)) == front.s) {
@@ -327,7 +316,7 @@ fn split_light(front: Sample, back: Sample, length: f32) -> Light {
     var s = front.s;
     var light = Light(vec3<f32>(0.0), vec3<f32>(1.0));
     var first = true;
-    for (var guard = 0u; guard <= params.knot_count + 1u; guard++) {
+    for (var guard = 0u; guard <= params.integrator.knot_count + 1u; guard++) {
         var bound: f32;
         var next: i32;
         if (increasing) {
@@ -360,7 +349,7 @@ fn split_light(front: Sample, back: Sample, length: f32) -> Light {
 
 // Eq. 3.13: homogeneous steps at the midpoints of equal sub-segments.
 fn riemann_light(s_front: f32, s_back: f32, length: f32) -> Light {
-    let steps = u32(clamp(ceil(length / params.riemann_step), 1.0, 65536.0));
+    let steps = u32(clamp(ceil(length / params.integrator.riemann_step), 1.0, 65536.0));
     let h = length / f32(steps);
     var light = Light(vec3<f32>(0.0), vec3<f32>(1.0));
     for (var k = 0u; k < steps; k++) {
@@ -375,19 +364,19 @@ fn riemann_light(s_front: f32, s_back: f32, length: f32) -> Light {
 // Full pre-integration: bilinear in (s_front, s_back), corrected from the
 // table's length to `length` (T' = T^r, C' = C (1 - T') / (1 - T)).
 fn preintegrated_light(s_front: f32, s_back: f32, length: f32) -> Light {
-    let n = params.preint_size;
+    let n = params.integrator.preint_size;
     let last = f32(n - 1u);
-    let x = clamp((s_front - params.preint_lo) * params.preint_scale, 0.0, last);
-    let y = clamp((s_back - params.preint_lo) * params.preint_scale, 0.0, last);
+    let x = clamp((s_front - params.integrator.preint_lo) * params.integrator.preint_scale, 0.0, last);
+    let y = clamp((s_back - params.integrator.preint_lo) * params.integrator.preint_scale, 0.0, last);
     let i = min(u32(x), n - 2u);
     let j = min(u32(y), n - 2u);
     let ti = x - f32(i);
     let tj = y - f32(j);
-    let r0 = params.preint_offset + 2u * (i * n + j);
+    let r0 = params.integrator.preint_offset + 2u * (i * n + j);
     let r1 = r0 + 2u * n;
     let e = mix(mix(tables[r0], tables[r0 + 2u], tj), mix(tables[r1], tables[r1 + 2u], tj), ti);
     let tr = mix(mix(tables[r0 + 1u], tables[r0 + 3u], tj), mix(tables[r1 + 1u], tables[r1 + 3u], tj), ti);
-    let ratio = length / params.preint_length;
+    let ratio = length / params.integrator.preint_length;
     if (ratio == 1.0) {
         return Light(e.xyz, tr.xyz);
     }
@@ -411,10 +400,10 @@ fn segment_light(front: Sample, back: Sample, length: f32) -> Light {
     if (!(length > 0.0)) {
         return Light(vec3<f32>(0.0), vec3<f32>(1.0));
     }
-    if (params.method == METHOD_RIEMANN) {
+    if (params.integrator.method == METHOD_RIEMANN) {
         return riemann_light(front.s, back.s, length);
     }
-    if (params.method == METHOD_PREINTEGRATED) {
+    if (params.integrator.method == METHOD_PREINTEGRATED) {
         return preintegrated_light(front.s, back.s, length);
     }
     return split_light(front, back, length);

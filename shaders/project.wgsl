@@ -82,13 +82,13 @@ fn vs_main(@builtin(vertex_index) corner: u32, @location(0) draw: vec2<u32>) -> 
         c = q2;
     }
     let p = me.xyz;
-    let rel = p - params.position;
-    let z = dot(rel, params.direction);
-    let sx = dot(rel, params.right) / (params.pixel * params.half_width);
-    let sy = dot(rel, params.up) / (params.pixel * params.half_height);
-    let ortho = params.orthographic == 1u;
+    let rel = p - params.view.position;
+    let z = dot(rel, params.view.direction);
+    let sx = dot(rel, params.view.right) / (params.view.pixel * params.view.half_width);
+    let sy = dot(rel, params.view.up) / (params.view.pixel * params.view.half_height);
+    let ortho = params.view.orthographic == 1u;
     // The view ray through the corner (length irrelevant below).
-    let ray = select(rel, params.direction, ortho);
+    let ray = select(rel, params.view.direction, ortho);
     // INTERSECTBACKFACE: the ray me + lambda ray meets the opposite plane at
     // lambda = det / (n . ray), n = X + Y + Z its normal, and the linear
     // field there is s_me + (sum of (s_k - s_me) (K . ray)) / (n . ray).
@@ -127,10 +127,10 @@ fn vs_main(@builtin(vertex_index) corner: u32, @location(0) draw: vec2<u32>) -> 
     out.opposite = select(vec4<f32>(0.0), vec4<f32>(1.0), is_far);
     out.clip_code = draw.y;
     let depths = vec4<f32>(
-        dot(q0.xyz - params.position, params.direction),
-        dot(q1.xyz - params.position, params.direction),
-        dot(q2.xyz - params.position, params.direction),
-        dot(q3.xyz - params.position, params.direction),
+        dot(q0.xyz - params.view.position, params.view.direction),
+        dot(q1.xyz - params.view.position, params.view.direction),
+        dot(q2.xyz - params.view.position, params.view.direction),
+        dot(q3.xyz - params.view.position, params.view.direction),
     );
     let scalars = vec4<f32>(q0.w, q1.w, q2.w, q3.w);
     out.bounds = vec4<f32>(
@@ -149,7 +149,7 @@ fn fs_main(f: Fragment) -> @location(0) vec4<f32> {
     var z_out: f32;
     var s_out: f32;
     var scale = 1.0;
-    if (params.orthographic == 1u) {
+    if (params.view.orthographic == 1u) {
         z_in = f.entry.x;
         s_in = f.entry.y;
         var best = BIG;
@@ -186,9 +186,9 @@ fn fs_main(f: Fragment) -> @location(0) vec4<f32> {
         z_out = 1.0 / best;
         s_out = best_b / best;
         // World length per unit depth along this pixel's ray.
-        let x = (f.clip.x - params.half_width) * params.pixel;
-        let y = (params.half_height - f.clip.y) * params.pixel;
-        scale = length(params.direction + params.right * x + params.up * y);
+        let x = (f.clip.x - params.view.half_width) * params.view.pixel;
+        let y = (params.view.half_height - f.clip.y) * params.view.pixel;
+        scale = length(params.view.direction + params.view.right * x + params.view.up * y);
     }
     z_in = max(z_in, f.bounds.x);
     z_out = min(z_out, f.bounds.y);
@@ -226,7 +226,7 @@ fn fs_main(f: Fragment) -> @location(0) vec4<f32> {
                     s_back = lo;
                 }
             }
-            if (k + 1 < i32(params.knot_count)) {
+            if (k + 1 < i32(params.integrator.knot_count)) {
                 let hi = knot_scalar(u32(k + 1));
                 let t = (hi - s_in) / span;
                 if (span > 0.0 && t < t_back) {

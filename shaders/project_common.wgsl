@@ -1,34 +1,15 @@
 // Declarations of the cell-projection pipeline (tetray_project): parameters
-// and bindings. The host concatenates project_common, integrate and project
-// (in that order) into one module; integrate.wgsl reads `params`' integrator
-// members, `tables` and `psi_table`.
+// and bindings. The host puts the method codes, params, project_common,
+// integrate and project (in that order) into one module; integrate.wgsl
+// reads `params.integrator`, `tables` and `psi_table`.
 
-// Per-frame parameters (host: tetray_project::layout::Params). The camera
-// as the ray casters have it: pixel (px, py) is the ray through
-// right * x + up * y, x = (px + 0.5 - half_width) pixel,
-// y = (half_height - py - 0.5) pixel, at unit depth from `position`
-// (perspective) or on the view plane through it (orthographic).
+// Per-frame parameters (host: tetray_project::layout::Params): the camera
+// as the ray casters have it (pixel (px, py) is the ray through
+// right * x + up * y at unit depth from `position` (perspective) or on the
+// view plane through it (orthographic)) and the integrator.
 struct Params {
-    position: vec3<f32>,
-    orthographic: u32,
-    right: vec3<f32>,
-    pixel: f32,
-    up: vec3<f32>,
-    half_width: f32,
-    direction: vec3<f32>,
-    half_height: f32,
-    method: u32,
-    grey: u32,
-    split: u32,
-    knot_count: u32,
-    psi_size: u32,
-    inv_unit_distance: f32,
-    riemann_step: f32,
-    preint_size: u32,
-    preint_offset: u32,
-    preint_lo: f32,
-    preint_scale: f32,
-    preint_length: f32,
+    view: ViewParams,
+    integrator: IntegratorParams,
 }
 
 // Counters (host: tetray_project::layout::STAT_*).

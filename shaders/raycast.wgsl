@@ -155,16 +155,16 @@ struct Pixel {
 
 // Casts the ray of pixel (px, py).
 fn cast_ray(px: u32, py: u32) -> Pixel {
-    let x = (f32(px) + 0.5 - params.half_width) * params.pixel;
-    let y = (params.half_height - (f32(py) + 0.5)) * params.pixel;
-    let offset = params.right * x + params.up * y;
+    let x = (f32(px) + 0.5 - params.view.half_width) * params.view.pixel;
+    let y = (params.view.half_height - (f32(py) + 0.5)) * params.view.pixel;
+    let offset = params.view.right * x + params.view.up * y;
     var ray: Ray;
     var inside: bool;
-    if (params.orthographic == 1u) {
-        ray = make_ray(params.position + offset, params.direction);
+    if (params.view.orthographic == 1u) {
+        ray = make_ray(params.view.position + offset, params.view.direction);
         inside = all(ray.origin >= params.bounds_min) && all(ray.origin <= params.bounds_max);
     } else {
-        ray = make_ray(params.position, params.direction + offset);
+        ray = make_ray(params.view.position, params.view.direction + offset);
         inside = params.eye_inside == 1u;
     }
     // A ray whose origin may be inside the mesh walks from its line's first

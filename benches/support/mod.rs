@@ -4,9 +4,10 @@
 #![allow(dead_code)]
 
 use tetray_boundary_bvh::BuildPreset;
+use tetray_core::Camera;
 use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunction};
 use tetray_mesh::LoadedMesh;
-use tetray_raycast::{Camera, Scene};
+use tetray_raycast::Scene;
 
 const XYZ: &[u8] = include_bytes!("../../data/plot3d/bluntfinxyz.bin");
 const Q: &[u8] = include_bytes!("../../data/plot3d/bluntfinq.bin");

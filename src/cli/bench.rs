@@ -1,11 +1,12 @@
 //! `tetray bench`: frame times over an orbit of the camera, as JSON.
 
 use super::args::{parse_finite, parse_size, CameraArgs, IntegratorArgs, MeshArgs, WalkArgs};
-use super::renderer::{Engine, FrameStats};
+use super::renderer::Engine;
 use super::{render, scene};
 use anyhow::Context;
 use clap::Args;
 use serde::Serialize;
+use tetray_core::WalkCounters;
 
 /// `tetray bench`.
 #[derive(Debug, Clone, Args)]
@@ -122,8 +123,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         .context("warm-up frame")?;
     let mut times_ms = Vec::with_capacity(args.frames as usize);
     let mut stages: Vec<tetray_project::ProjectStats> = Vec::new();
-    let (mut rays, mut segments, mut steps) = (0u64, 0u64, 0u64);
-    let (mut bound_hits, mut failures) = (0u64, 0u64);
+    let mut total = WalkCounters::default();
     let mut entry_lists_frames = 0u32;
     for frame in 0..args.frames {
         let output = engine
@@ -131,11 +131,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
             .with_context(|| format!("frame {frame}"))?;
         let stats = output.stats;
         times_ms.push(stats.elapsed.as_secs_f64() * 1e3);
-        rays += stats.rays;
-        segments += stats.segments;
-        steps += stats.steps;
-        bound_hits += stats.steps_bound_hits;
-        failures += stats.walk_failures;
+        total = total.merge(stats.counters);
         entry_lists_frames += u32::from(stats.entry_lists);
         stages.extend(stats.project);
         camera.azimuth(orbit_step).context("orbiting the camera")?;
@@ -143,11 +139,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
             .orthogonalize_view_up()
             .context("orbiting the camera")?;
     }
-    render::warn_about(&FrameStats {
-        steps_bound_hits: bound_hits,
-        walk_failures: failures,
-        ..Default::default()
-    });
+    render::warn_about(&total);
 
     let total_s = times_ms.iter().sum::<f64>() / 1e3;
     let per_s = |count: f64| count / total_s.max(1e-12);
@@ -183,13 +175,13 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         ms_per_frame_min: times_ms.iter().copied().fold(f64::INFINITY, f64::min),
         ms_per_frame_max: times_ms.iter().copied().fold(0.0, f64::max),
         ms_per_frame_mad: self::median(&deviations),
-        rays_per_s: per_s(rays as f64),
-        segments_per_s: per_s(segments as f64),
-        segments_per_frame: segments as f64 / frames,
+        rays_per_s: per_s(total.rays as f64),
+        segments_per_s: per_s(total.segments as f64),
+        segments_per_frame: total.segments as f64 / frames,
         tets_per_s: per_s(tets as f64 * frames),
-        tet_steps_per_s: per_s(steps as f64),
-        steps_bound_hits: bound_hits,
-        walk_failures: failures,
+        tet_steps_per_s: per_s(total.steps as f64),
+        steps_bound_hits: total.steps_bound_hits,
+        walk_failures: total.walk_failures,
         entry_lists_frames,
         load_s: setup.load_time.as_secs_f64(),
         scene_s: setup.scene_time.as_secs_f64(),

@@ -18,6 +18,7 @@ use anyhow::{bail, Context};
 use clap::Args;
 use glam::DVec3;
 use serde::Serialize;
+use tetray_core::{Camera, Image};
 use tetray_distributed::mpi::topology::SimpleCommunicator;
 use tetray_distributed::mpi::traits::*;
 use tetray_distributed::transport::reduce_bounds;
@@ -26,7 +27,7 @@ use tetray_distributed::{
 };
 use tetray_io::vtk::{parallel_piece_count, read_piece_subset};
 use tetray_mesh::{centring_origin, LoadedMesh, ScalarField, TetMesh, Topology};
-use tetray_raycast::{Camera, Image, RenderOptions, Scene};
+use tetray_raycast::{RenderOptions, Scene};
 
 use super::args::{CameraArgs, IntegratorArgs, MeshArgs, RendererArg, WalkArgs};
 use super::scene;

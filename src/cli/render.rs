@@ -6,7 +6,7 @@ use std::time::{Duration, Instant};
 use anyhow::bail;
 use glam::Vec3;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use tetray_raycast::Image;
+use tetray_core::{Image, WalkCounters};
 
 use super::args::RenderArgs;
 use super::renderer::{Engine, FrameStats};
@@ -67,7 +67,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     if let Some(project) = &frame.stats.project {
         println!("{}", describe_projection(project, args.walk.sort.name()));
     }
-    warn_about(&frame.stats);
+    warn_about(&frame.stats.counters);
     write_image(&frame.image, output, format, args.output.background)?;
     let shown = std::path::absolute(output).unwrap_or_else(|_| output.clone());
     println!("wrote {}", shown.display());
@@ -80,17 +80,17 @@ pub fn describe_stats(stats: &FrameStats, (width, height): (u32, u32)) -> String
     format!(
         "rendered {width}x{height} in {seconds:.3} s: {} rays, {} hit the mesh, {} segments, \
          {} tetrahedra visited, {} boundary entries{} ({:.2} M segments/s)",
-        stats.rays,
-        stats.rays_hit,
-        stats.segments,
-        stats.steps,
-        stats.entries,
+        stats.counters.rays,
+        stats.counters.rays_hit,
+        stats.counters.segments,
+        stats.counters.steps,
+        stats.counters.entries,
         if stats.entry_lists {
             " from per-pixel lists"
         } else {
             ""
         },
-        stats.segments as f64 / seconds.max(1e-12) / 1e6
+        stats.counters.segments as f64 / seconds.max(1e-12) / 1e6
     )
 }
 
@@ -117,19 +117,19 @@ pub fn describe_projection(stats: &tetray_project::ProjectStats, sort: &str) -> 
 }
 
 /// Warnings for rays the walk could not finish.
-pub fn warn_about(stats: &FrameStats) {
-    if stats.steps_bound_hits > 0 {
+pub fn warn_about(counters: &WalkCounters) {
+    if counters.steps_bound_hits > 0 {
         eprintln!(
             "warning: {} ray{} hit the step bound and were cut short (raise --max-steps)",
-            stats.steps_bound_hits,
-            scene::plural(stats.steps_bound_hits as usize)
+            counters.steps_bound_hits,
+            scene::plural(counters.steps_bound_hits as usize)
         );
     }
-    if stats.walk_failures > 0 {
+    if counters.walk_failures > 0 {
         eprintln!(
             "warning: {} ray{} stopped in a tetrahedron with no exit face (a degenerate cell)",
-            stats.walk_failures,
-            scene::plural(stats.walk_failures as usize)
+            counters.walk_failures,
+            scene::plural(counters.walk_failures as usize)
         );
     }
 }

@@ -19,7 +19,6 @@ mod hull;
 mod preset;
 mod slab;
 mod traverse;
-pub mod watertight;
 
 pub use brute::brute_force_first_entry;
 pub use build::{BoundaryBvh, BvhStats};
@@ -84,14 +83,22 @@ pub const REENTRY_REL: f32 = 1.0 / 1_048_576.0;
 
 /// The distance a re-entry query starts from after leaving at `t_exit`.
 #[inline]
-pub fn reentry_start(ray: &watertight::RayFrame, t_exit: f32, scene_abs_max: f32) -> f32 {
+pub fn reentry_start(
+    ray: &tetray_core::watertight::RayFrame,
+    t_exit: f32,
+    scene_abs_max: f32,
+) -> f32 {
     t_exit - REENTRY_REL * (scene_abs_max + ray.origin.abs().max_element())
 }
 
 /// A ray with a non-finite origin or direction, or a NaN range, crosses
 /// nothing by contract (its distances would be meaningless).
 #[inline(always)]
-pub(crate) fn query_is_valid(ray: &watertight::RayFrame, t_min: f32, t_max: f32) -> bool {
+pub(crate) fn query_is_valid(
+    ray: &tetray_core::watertight::RayFrame,
+    t_min: f32,
+    t_max: f32,
+) -> bool {
     ray.origin.is_finite() && ray.dir.is_finite() && !t_min.is_nan() && !t_max.is_nan()
 }
 

@@ -1,6 +1,6 @@
 //! The conservative ray / box test used by every traversal of the BVH.
 //!
-//! The crossing itself is decided by the [`crate::watertight`] predicate on
+//! The crossing itself is decided by the [`tetray_core::watertight`] predicate on
 //! vertices projected into the ray frame; the box test only prunes, so it must
 //! never cull a box holding a face the predicate would accept. Two things can
 //! make an exact slab test do that: rounding (projection, frame, the slab

@@ -7,8 +7,8 @@ mod support;
 use glam::Vec3;
 use support::rays::random_dir;
 use support::{topology, Rng};
-use tetray_boundary_bvh::watertight::RayFrame;
 use tetray_boundary_bvh::{brute_force_first_entry, BoundaryBvh, BuildPreset, FLAT_STACK_SIZE};
+use tetray_core::watertight::RayFrame;
 use tetray_mesh::TetMesh;
 
 /// Tet `k` has size and position `2^-k` (k = 0..count), all disjoint; the

@@ -8,10 +8,10 @@ use glam::Vec3;
 use support::meshes::{cases, Case};
 use support::rays::{grid_queries, random_queries, Query};
 use support::{next_exit, topology, Rng};
-use tetray_boundary_bvh::watertight::RayFrame;
 use tetray_boundary_bvh::{
     brute_force_first_entry, BoundaryBvh, BuildPreset, BvhError, EntryHit, FlatBvh,
 };
+use tetray_core::watertight::RayFrame;
 use tetray_mesh::{TetMesh, Topology};
 
 fn same(a: Option<EntryHit>, b: Option<EntryHit>) -> bool {

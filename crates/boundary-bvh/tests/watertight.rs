@@ -8,7 +8,7 @@ use glam::{DVec2, Vec3};
 use support::meshes::cases;
 use support::rays::{grid_queries, random_queries};
 use support::{line_crossings, topology, Rng};
-use tetray_boundary_bvh::watertight::{Projector, RayFrame};
+use tetray_core::watertight::{Projector, RayFrame};
 use tetray_mesh::{TetMesh, Topology};
 
 fn counts(mesh: &TetMesh, topo: &Topology, ray: &RayFrame) -> (usize, usize) {

@@ -19,7 +19,7 @@
 
 use rayon::prelude::*;
 
-use tetray_raycast::Image;
+use tetray_core::Image;
 
 use crate::metrics::same_size;
 use crate::CompareError;

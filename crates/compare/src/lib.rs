@@ -39,7 +39,7 @@ pub enum CompareError {
         source: std::io::Error,
     },
     #[error(transparent)]
-    Raster(#[from] tetray_raycast::ImageError),
+    Raster(#[from] tetray_core::ImageError),
     #[error("serializing the table: {0}")]
     Json(#[from] serde_json::Error),
 }

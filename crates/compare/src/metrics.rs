@@ -1,7 +1,7 @@
 //! Per-pixel error against a reference and its summary.
 
 use serde::Serialize;
-use tetray_raycast::Image;
+use tetray_core::Image;
 
 use crate::CompareError;
 

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 
 use glam::Vec3;
 use serde::Serialize;
-use tetray_raycast::Image;
+use tetray_core::Image;
 
 use crate::flip::{flip, PIXELS_PER_DEGREE};
 use crate::heatmap::{colour_bar, heat_map};

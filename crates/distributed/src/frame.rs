@@ -5,9 +5,10 @@
 use std::time::Instant;
 
 use mpi::traits::*;
+use tetray_core::{Camera, Image};
 use tetray_integrate::ScalarIntegrator;
 use tetray_mesh::TetMesh;
-use tetray_raycast::{render_scalar_fragments, Camera, Image, RenderOptions, Scene};
+use tetray_raycast::{render_scalar_fragments, RenderOptions, Scene};
 
 use crate::layout::TileLayout;
 use crate::report::{FrameReport, Row};
@@ -96,7 +97,7 @@ pub fn render_distributed<C: Communicator>(
     let (fragments, segments) = match scene {
         Some(scene) => {
             let out = render_scalar_fragments(scene, camera, integrator, opts)?;
-            (out.fragments, out.stats.segments)
+            (out.fragments, out.stats.counters.segments)
         }
         None => (Vec::new(), 0),
     };

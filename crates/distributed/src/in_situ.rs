@@ -5,10 +5,11 @@
 use glam::{DVec3, Vec3};
 use mpi::traits::*;
 use tetray_boundary_bvh::BuildPreset;
+use tetray_core::Camera;
 use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunction};
 use tetray_mesh::cells::{assemble_at, CellGrid, ReadOptions};
 use tetray_mesh::{centring_origin, finish, prepare, LoadedMesh, MeshRead, ScalarField, TetMesh};
-use tetray_raycast::{Camera, RenderOptions, Scene};
+use tetray_raycast::{RenderOptions, Scene};
 
 use crate::frame::{agree, render_distributed, DistributedFrame};
 use crate::layout::DEFAULT_TILE;

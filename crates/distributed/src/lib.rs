@@ -55,11 +55,11 @@ pub enum DistributedError {
     #[error(transparent)]
     Render(#[from] tetray_raycast::RenderError),
     #[error(transparent)]
-    Image(#[from] tetray_raycast::ImageError),
+    Image(#[from] tetray_core::ImageError),
     #[error(transparent)]
     Scene(#[from] tetray_raycast::SceneError),
     #[error(transparent)]
-    Camera(#[from] tetray_raycast::CameraError),
+    Camera(#[from] tetray_core::CameraError),
     #[error(transparent)]
     Mesh(#[from] tetray_mesh::MeshError),
     #[error(transparent)]

@@ -10,7 +10,8 @@ use mpi::collective::SystemOperation;
 use mpi::datatype::{Partition, PartitionMut};
 use mpi::traits::*;
 use mpi::Count;
-use tetray_raycast::{Fragment, Image};
+use tetray_core::Image;
+use tetray_raycast::Fragment;
 
 use crate::composite::{assemble, bucket_by_owner, composite_owned, prefix_sums};
 use crate::layout::TileLayout;

@@ -3,9 +3,10 @@
 
 use std::time::Duration;
 
+use tetray_core::{Camera, Image, WalkCounters};
 use tetray_gpu::{GpuContext, GpuIntegrator, GpuRaycaster, GpuRenderOptions, GpuScene};
 use tetray_project::{ProjectOptions, ProjectStats, Projection};
-use tetray_raycast::{render_scalar_with_progress, Camera, Image, RenderOptions};
+use tetray_raycast::{render_scalar_with_progress, RenderOptions};
 
 use crate::error::{bail, Context, FrameError};
 use crate::options::{RendererChoice, WalkOptions};
@@ -37,13 +38,10 @@ pub struct GpuEngine {
 /// What either renderer reports of a frame.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct FrameStats {
-    pub rays: u64,
-    pub rays_hit: u64,
-    pub segments: u64,
-    pub steps: u64,
-    pub entries: u64,
-    pub steps_bound_hits: u64,
-    pub walk_failures: u64,
+    /// What the walk counted (for the projection: rays are pixels, lit
+    /// pixels the rays that hit, draws the steps; for shear-warp: slabs
+    /// composited the segments).
+    pub counters: WalkCounters,
     /// The CPU ray caster took its rays' boundary entries from per-pixel
     /// lists, not BVH queries.
     pub entry_lists: bool,
@@ -71,7 +69,7 @@ impl Engine {
         log: &dyn Fn(String),
     ) -> Result<Engine, FrameError> {
         let choice = choice.into();
-        let gpu_method = tetray_gpu::layout::method_code(setup.method).is_some();
+        let gpu_method = setup.method.has_gpu_kernel();
         // The adapter for a renderer asked for by name, which must be able
         // to run the method.
         let gpu_context = |flag: &str| -> Result<GpuContext, FrameError> {
@@ -229,13 +227,7 @@ impl Engine {
                 Ok(Frame {
                     image: out.image,
                     stats: FrameStats {
-                        rays: s.rays,
-                        rays_hit: s.rays_hit,
-                        segments: s.segments,
-                        steps: s.steps,
-                        entries: s.entries,
-                        steps_bound_hits: s.steps_bound_hits,
-                        walk_failures: s.walk_failures,
+                        counters: s.counters,
                         entry_lists: s.entry_lists,
                         elapsed: s.elapsed,
                         project: None,
@@ -257,13 +249,7 @@ impl Engine {
                 Ok(Frame {
                     image: out.image,
                     stats: FrameStats {
-                        rays: s.rays,
-                        rays_hit: s.rays_hit,
-                        segments: s.segments,
-                        steps: s.steps,
-                        entries: s.entries,
-                        steps_bound_hits: s.steps_bound_hits,
-                        walk_failures: s.walk_failures,
+                        counters: s.counters,
                         entry_lists: false,
                         elapsed: s.frame_time(),
                         project: None,
@@ -286,10 +272,13 @@ impl Engine {
                 Ok(Frame {
                     image: out.image,
                     stats: FrameStats {
-                        rays: u64::from(width) * u64::from(height),
-                        rays_hit,
-                        segments: s.segments,
-                        steps: s.draws as u64,
+                        counters: WalkCounters {
+                            rays: u64::from(width) * u64::from(height),
+                            rays_hit,
+                            segments: s.segments,
+                            steps: s.draws as u64,
+                            ..WalkCounters::default()
+                        },
                         elapsed: s.sort_time + s.expand_time + s.draw_time,
                         project: Some(s),
                         ..FrameStats::default()

@@ -6,12 +6,13 @@ use std::time::{Duration, Instant};
 
 use glam::{DVec3, Vec3};
 use tetray_boundary_bvh::BuildPreset;
+use tetray_core::{relative_to_origin, Camera};
 use tetray_integrate::{
     ColorPoint, IntegratorOptions, Method, OpacityMode, OpacityPoint, ScalarIntegrator,
     TransferFunction,
 };
 use tetray_mesh::{default_field, mean_tet_chord, value_range, ScalarField};
-use tetray_raycast::{relative_to_origin, Camera, Scene};
+use tetray_raycast::Scene;
 
 use crate::error::{bail, Context, FrameError};
 use crate::mesh::MeshInput;

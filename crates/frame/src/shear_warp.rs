@@ -13,10 +13,10 @@ use std::path::Path;
 use std::time::Instant;
 
 use glam::{DVec3, Vec3};
+use tetray_core::Camera;
 use tetray_integrate::Method;
 use tetray_io::vtk::ImageGrid;
 use tetray_mesh::{centring_origin, mean_tet_chord};
-use tetray_raycast::Camera;
 use tetray_shearwarp::{Classification, ClassifyOptions, RegularGrid, ShearWarp, ShearWarpOptions};
 
 use crate::engine::{Frame, FrameStats};
@@ -235,9 +235,12 @@ pub fn render(
     Ok(Frame {
         image: out.image,
         stats: FrameStats {
-            rays: u64::from(width) * u64::from(height),
-            rays_hit,
-            segments: out.stats.slabs_composited,
+            counters: tetray_core::WalkCounters {
+                rays: u64::from(width) * u64::from(height),
+                rays_hit,
+                segments: out.stats.slabs_composited,
+                ..tetray_core::WalkCounters::default()
+            },
             elapsed: out.stats.elapsed,
             ..FrameStats::default()
         },

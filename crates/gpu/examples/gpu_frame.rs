@@ -4,10 +4,11 @@
 use std::path::Path;
 
 use tetray_boundary_bvh::BuildPreset;
+use tetray_core::Camera;
 use tetray_gpu::{GpuContext, GpuIntegrator, GpuRaycaster, GpuRenderOptions, GpuScene};
 use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunction};
 use tetray_io::{load, LoadOptions};
-use tetray_raycast::{render_scalar, Camera, RenderOptions, Scene};
+use tetray_raycast::{render_scalar, RenderOptions, Scene};
 
 fn main() -> anyhow::Result<()> {
     let args: Vec<String> = std::env::args().collect();
@@ -92,7 +93,7 @@ fn main() -> anyhow::Result<()> {
         all / segments,
         bvh / segments
     );
-    let compare = |name: &str, a: &tetray_raycast::Image, b: &tetray_raycast::Image| {
+    let compare = |name: &str, a: &tetray_core::Image, b: &tetray_core::Image| {
         let mut worst = 0.0f32;
         let mut differing = 0;
         for (a, b) in a.rgba.iter().zip(&b.rgba) {

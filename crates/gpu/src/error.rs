@@ -1,7 +1,7 @@
 //! Why the GPU ray caster could not run.
 
 use tetray_boundary_bvh::BvhError;
-use tetray_raycast::{CameraError, ImageError};
+use tetray_core::{CameraError, ImageError};
 
 #[derive(Debug, thiserror::Error)]
 pub enum GpuError {

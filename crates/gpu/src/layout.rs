@@ -1,13 +1,15 @@
 //! Host twins of the kernel's uniform structs (checked against naga's
-//! layout of the WGSL in tests/layout.rs) and the codes shared with it.
+//! layout of the WGSL in tests/layout.rs) and the codes shared with it (the
+//! methods' codes are `tetray_core::Method::gpu_code`).
 
 use bytemuck::{Pod, Zeroable};
-use tetray_integrate::Method;
+use tetray_core::PixelRays;
 
-/// WGSL `Params` (shaders/common.wgsl): one per frame.
+/// WGSL `ViewParams` (shaders/params.wgsl): the camera of a frame, as the
+/// ray caster and the cell projection read it.
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 #[repr(C)]
-pub struct Params {
+pub struct ViewParams {
     pub position: [f32; 3],
     pub orthographic: u32,
     pub right: [f32; 3],
@@ -16,15 +18,33 @@ pub struct Params {
     pub half_width: f32,
     pub direction: [f32; 3],
     pub half_height: f32,
-    pub bounds_min: [f32; 3],
-    pub eye_inside: u32,
-    pub bounds_max: [f32; 3],
-    pub scene_abs_max: f32,
-    pub width: u32,
-    pub height: u32,
-    pub max_steps: u32,
+}
+
+impl ViewParams {
+    /// The camera of `rays` as the kernels take it.
+    pub fn new(rays: &PixelRays) -> ViewParams {
+        let basis = rays.basis();
+        let (half_width, half_height) = rays.half_size();
+        ViewParams {
+            position: rays.position().to_array(),
+            orthographic: u32::from(rays.is_orthographic()),
+            right: basis.right.to_array(),
+            pixel: rays.pixel_size(),
+            up: basis.up.to_array(),
+            half_width,
+            direction: basis.direction.to_array(),
+            half_height,
+        }
+    }
+}
+
+/// WGSL `IntegratorParams` (shaders/params.wgsl): what integrate.wgsl
+/// reads of the integrator, in both pipelines.
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+#[repr(C)]
+pub struct IntegratorParams {
+    /// [`tetray_core::Method::gpu_code`].
     pub method: u32,
-    pub stop_below_sum: f32,
     pub grey: u32,
     pub split: u32,
     pub knot_count: u32,
@@ -36,6 +56,22 @@ pub struct Params {
     pub preint_lo: f32,
     pub preint_scale: f32,
     pub preint_length: f32,
+}
+
+/// WGSL `Params` (shaders/common.wgsl): one per frame of the ray caster.
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+#[repr(C)]
+pub struct Params {
+    pub view: ViewParams,
+    pub bounds_min: [f32; 3],
+    pub eye_inside: u32,
+    pub bounds_max: [f32; 3],
+    pub scene_abs_max: f32,
+    pub width: u32,
+    pub height: u32,
+    pub max_steps: u32,
+    pub stop_below_sum: f32,
+    pub integrator: IntegratorParams,
     pub tet_chunk: u32,
     pub point_chunk: u32,
     pub prim_offset: u32,
@@ -62,22 +98,6 @@ pub const STAT_ENTRIES: usize = 5;
 pub const STAT_BOUND_HITS: usize = 6;
 pub const STAT_WALK_FAILURES: usize = 7;
 pub const STAT_COUNT: usize = 8;
-
-/// The kernel's code of a method (WGSL `METHOD_*`), or `None` for the f64
-/// reference methods, which have no GPU kernel.
-pub fn method_code(method: Method) -> Option<u32> {
-    Some(match method {
-        Method::Ppi => 0,
-        Method::Exact => 1,
-        Method::Average => 2,
-        Method::AverageOpacity => 3,
-        Method::LinAvgOpacity => 4,
-        Method::LinOpacity => 5,
-        Method::Preintegrated => 6,
-        Method::Riemann => 7,
-        Method::Reference | Method::ReferenceOpacity => return None,
-    })
-}
 
 /// `vec4<f32>` entries per transfer-function interval in the tables buffer.
 pub const INTERVAL_ENTRIES: usize = 4;

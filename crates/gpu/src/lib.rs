@@ -29,7 +29,8 @@ mod upload;
 pub use context::{quiet_device_select, GpuContext};
 pub use error::GpuError;
 pub use render::{
-    frame_params, FrameJob, GpuFrame, GpuRaycaster, GpuRenderOptions, GpuStats, SceneLayout, TILE,
+    frame_params, walk_counters, FrameJob, GpuFrame, GpuRaycaster, GpuRenderOptions, GpuStats,
+    SceneLayout, TILE,
 };
 pub use target::GpuTarget;
 pub use upload::{GpuIntegrator, GpuScene, IntegratorData, PreintParams, SceneData};

@@ -5,10 +5,10 @@
 use std::ops::Range;
 use std::time::{Duration, Instant};
 
-use tetray_raycast::{Camera, Image};
+use tetray_core::{Camera, Image, WalkCounters};
 use wgpu::util::DeviceExt;
 
-use crate::layout::{self, Params, Tile};
+use crate::layout::{self, Params, Tile, ViewParams};
 use crate::readback::{read_buffer, readback_buffer, PassTimestamps};
 use crate::shaders::raycast_source;
 use crate::upload::{GpuIntegrator, GpuScene, IntegratorData};
@@ -45,13 +45,8 @@ impl Default for GpuRenderOptions {
 /// Counters and times of one GPU frame.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct GpuStats {
-    pub rays: u64,
-    pub rays_hit: u64,
-    pub segments: u64,
-    pub steps: u64,
-    pub entries: u64,
-    pub steps_bound_hits: u64,
-    pub walk_failures: u64,
+    /// The kernel's counters, read back from its counter array.
+    pub counters: WalkCounters,
     /// GPU time of the pass (timestamp queries), when the adapter has them.
     pub gpu_time: Option<Duration>,
     /// Submission to completion, read-back excluded.
@@ -304,6 +299,21 @@ pub struct FrameJob<'a> {
     pub opts: &'a GpuRenderOptions,
 }
 
+/// The counters of `rays` rays from the kernel's counter array.
+pub fn walk_counters(counters: &[u32], rays: u64) -> WalkCounters {
+    let at = |i: usize| u64::from(counters.get(i).copied().unwrap_or(0));
+    let wide = |lo: usize, hi: usize| at(lo) | (at(hi) << 32);
+    WalkCounters {
+        rays,
+        rays_hit: at(layout::STAT_RAYS_HIT),
+        segments: wide(layout::STAT_SEGMENTS_LO, layout::STAT_SEGMENTS_HI),
+        steps: wide(layout::STAT_STEPS_LO, layout::STAT_STEPS_HI),
+        entries: at(layout::STAT_ENTRIES),
+        steps_bound_hits: at(layout::STAT_BOUND_HITS),
+        walk_failures: at(layout::STAT_WALK_FAILURES),
+    }
+}
+
 impl GpuStats {
     /// The stats of `rays` rays from the kernel's counter array (read back
     /// from [`GpuTarget::stats`]) and the times measured around it.
@@ -313,16 +323,8 @@ impl GpuStats {
         gpu_time: Option<Duration>,
         wall_time: Duration,
     ) -> GpuStats {
-        let at = |i: usize| u64::from(counters.get(i).copied().unwrap_or(0));
-        let wide = |lo: usize, hi: usize| at(lo) | (at(hi) << 32);
         GpuStats {
-            rays,
-            rays_hit: at(layout::STAT_RAYS_HIT),
-            segments: wide(layout::STAT_SEGMENTS_LO, layout::STAT_SEGMENTS_HI),
-            steps: wide(layout::STAT_STEPS_LO, layout::STAT_STEPS_HI),
-            entries: at(layout::STAT_ENTRIES),
-            steps_bound_hits: at(layout::STAT_BOUND_HITS),
-            walk_failures: at(layout::STAT_WALK_FAILURES),
+            counters: walk_counters(counters, rays),
             gpu_time,
             wall_time,
         }
@@ -352,20 +354,10 @@ pub fn frame_params(
         return Err(GpuError::EarlyTermination(opts.early_termination));
     }
     let rays = camera.pixel_rays(opts.width, opts.height)?;
-    let basis = rays.basis();
-    let (half_width, half_height) = rays.half_size();
     let (lo, hi) = scene.bounds;
-    let preint = integrator.preint;
     let default_steps = (scene.tet_count as u64 + 1024).min(u64::from(u32::MAX)) as u32;
     Ok(Params {
-        position: rays.position().to_array(),
-        orthographic: u32::from(rays.is_orthographic()),
-        right: basis.right.to_array(),
-        pixel: rays.pixel_size(),
-        up: basis.up.to_array(),
-        half_width,
-        direction: basis.direction.to_array(),
-        half_height,
+        view: ViewParams::new(&rays),
         bounds_min: lo.to_array(),
         eye_inside: u32::from(!rays.is_orthographic() && camera.is_inside_bounds(lo, hi)),
         bounds_max: hi.to_array(),
@@ -373,19 +365,8 @@ pub fn frame_params(
         width: opts.width,
         height: opts.height,
         max_steps: opts.max_steps_per_ray.unwrap_or(default_steps),
-        method: integrator.method,
         stop_below_sum: 3.0 * (1.0 - opts.early_termination),
-        grey: u32::from(integrator.grey),
-        split: u32::from(integrator.split),
-        knot_count: integrator.knot_count,
-        psi_size: integrator.psi_size,
-        inv_unit_distance: integrator.inv_unit_distance,
-        riemann_step: integrator.riemann_step,
-        preint_size: preint.map_or(0, |p| p.size),
-        preint_offset: preint.map_or(0, |p| p.offset),
-        preint_lo: preint.map_or(0.0, |p| p.lo),
-        preint_scale: preint.map_or(0.0, |p| p.scale),
-        preint_length: preint.map_or(1.0, |p| p.length),
+        integrator: integrator.params(integrator.split),
         tet_chunk: scene.tet_chunk,
         point_chunk: scene.point_chunk,
         prim_offset: scene.prim_offset,

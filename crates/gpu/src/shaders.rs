@@ -1,6 +1,10 @@
-//! The WGSL sources, embedded. WGSL has no includes: the kernel is the
-//! concatenation of its pieces, in dependency order.
+//! The WGSL sources, embedded, and how they are put together. WGSL has no
+//! includes: a module is its pieces in dependency order, after the method
+//! codes generated from [`tetray_core::Method::gpu_code`] and the parameter
+//! blocks both pipelines share. Tests validate every module with naga.
 
+/// The parameter blocks shared by the ray caster and the projection.
+pub const PARAMS: &str = include_str!("../../../shaders/params.wgsl");
 /// Declarations: parameters, bindings, buffer accessors.
 pub const COMMON: &str = include_str!("../../../shaders/common.wgsl");
 /// Ray frame and the exact watertight edge predicate.
@@ -12,7 +16,18 @@ pub const INTEGRATE: &str = include_str!("../../../shaders/integrate.wgsl");
 /// The per-pixel kernel: entry, walk, compositing, counters.
 pub const RAYCAST: &str = include_str!("../../../shaders/raycast.wgsl");
 
+/// A module of `pieces` (in order) behind the method codes and
+/// [`PARAMS`].
+pub fn module(pieces: &[&str]) -> String {
+    let mut source = tetray_core::method::wgsl_constants();
+    for piece in [PARAMS].iter().chain(pieces) {
+        source.push('\n');
+        source.push_str(piece);
+    }
+    source
+}
+
 /// The ray-casting module: every piece, in order.
 pub fn raycast_source() -> String {
-    [COMMON, PREDICATE, BVH, INTEGRATE, RAYCAST].join("\n")
+    module(&[COMMON, PREDICATE, BVH, INTEGRATE, RAYCAST])
 }

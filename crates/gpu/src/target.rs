@@ -2,7 +2,7 @@
 //! kernel writes, kept on the GPU so that a frame can be rendered a few rows
 //! per submission and shown (or compared) without reading it back.
 
-use tetray_raycast::CameraError;
+use tetray_core::CameraError;
 
 use crate::layout::STAT_COUNT;
 use crate::readback::readback_buffer;

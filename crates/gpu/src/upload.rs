@@ -12,7 +12,7 @@ use tetray_integrate::{GammaSpacing, Method, Model, ScalarIntegrator};
 use tetray_raycast::Scene;
 use wgpu::util::DeviceExt;
 
-use crate::layout::{method_code, INTERVAL_ENTRIES, PREINT_ENTRIES};
+use crate::layout::{IntegratorParams, INTERVAL_ENTRIES, PREINT_ENTRIES};
 use crate::render::SceneLayout;
 use crate::{GpuContext, GpuError};
 
@@ -270,9 +270,30 @@ pub struct PreintParams {
 }
 
 impl IntegratorData {
+    /// What integrate.wgsl reads of this integrator; `split`: whether
+    /// segments are cut at the knots (the projection draws one knot
+    /// interval at a time and never splits).
+    pub fn params(&self, split: bool) -> IntegratorParams {
+        let preint = self.preint;
+        IntegratorParams {
+            method: self.method,
+            grey: u32::from(self.grey),
+            split: u32::from(split),
+            knot_count: self.knot_count,
+            psi_size: self.psi_size,
+            inv_unit_distance: self.inv_unit_distance,
+            riemann_step: self.riemann_step,
+            preint_size: preint.map_or(0, |p| p.size),
+            preint_offset: preint.map_or(0, |p| p.offset),
+            preint_lo: preint.map_or(0.0, |p| p.lo),
+            preint_scale: preint.map_or(0.0, |p| p.scale),
+            preint_length: preint.map_or(1.0, |p| p.length),
+        }
+    }
+
     pub fn new(integrator: &ScalarIntegrator) -> Result<IntegratorData, GpuError> {
         let method = integrator.method();
-        let code = method_code(method).ok_or(GpuError::Driver(format!(
+        let code = method.gpu_code().ok_or(GpuError::Driver(format!(
             "the {method} integrator (f64 quadrature) has no GPU kernel; use --renderer cpu"
         )))?;
         let knots = integrator.knots();

@@ -23,6 +23,7 @@ mod support;
 
 use glam::Vec3;
 use support::{assert_close, gpu, render_all, scene};
+use tetray_core::Camera;
 use tetray_integrate::{
     ColorPoint, IntegratorOptions, Method, OpacityMode, OpacityPoint, ScalarIntegrator,
     TransferFunction,
@@ -30,7 +31,7 @@ use tetray_integrate::{
 use tetray_raycast::scenes::{
     add_field, box_grid, hollow_box, jittered_box, two_boxes, CellSplit, ScalarSpec,
 };
-use tetray_raycast::{Camera, Scene};
+use tetray_raycast::Scene;
 
 /// Every method the GPU kernel has.
 const GPU_METHODS: [Method; 8] = [
@@ -115,19 +116,28 @@ fn check_methods(
         let name = format!("{test}-{method}");
         assert_close(&format!("{name}-twin"), &r.gpu, &r.twin, 5e-6, 0, 5e-6);
         assert_close(&format!("{name}-reference"), &r.gpu, &r.cpu, 3e-5, 0, 3e-5);
-        assert_eq!(r.gpu_stats.steps_bound_hits, 0, "{name}: step bound");
-        assert_eq!(r.gpu_stats.walk_failures, 0, "{name}: walk failures");
         assert_eq!(
-            r.gpu_stats.rays_hit, r.cpu_stats.rays_hit,
+            r.gpu_stats.counters.steps_bound_hits, 0,
+            "{name}: step bound"
+        );
+        assert_eq!(
+            r.gpu_stats.counters.walk_failures, 0,
+            "{name}: walk failures"
+        );
+        assert_eq!(
+            r.gpu_stats.counters.rays_hit, r.cpu_stats.counters.rays_hit,
             "{name}: rays hit"
         );
         assert_eq!(
-            r.gpu_stats.steps, r.cpu_stats.steps,
+            r.gpu_stats.counters.steps, r.cpu_stats.counters.steps,
             "{name}: tetrahedra visited"
         );
-        assert_eq!(r.gpu_stats.entries, r.cpu_stats.entries, "{name}: entries");
         assert_eq!(
-            r.gpu_stats.segments, r.twin_stats[1],
+            r.gpu_stats.counters.entries, r.cpu_stats.counters.entries,
+            "{name}: entries"
+        );
+        assert_eq!(
+            r.gpu_stats.counters.segments, r.twin_stats[1],
             "{name}: segments vs twin"
         );
     }
@@ -304,11 +314,14 @@ fn axis_aligned_rays_through_edges_and_vertices() {
             assert_close(&format!("{name}-reference"), &r.gpu, &r.cpu, 1e-5, 0, 1e-5);
             assert_close(&format!("{name}-twin"), &r.gpu, &r.twin, 5e-6, 0, 5e-6);
             assert_eq!(
-                r.gpu_stats.steps_bound_hits + r.gpu_stats.walk_failures,
+                r.gpu_stats.counters.steps_bound_hits + r.gpu_stats.counters.walk_failures,
                 0,
                 "{name}"
             );
-            assert_eq!(r.gpu_stats.steps, r.cpu_stats.steps, "{name}");
+            assert_eq!(
+                r.gpu_stats.counters.steps, r.cpu_stats.counters.steps,
+                "{name}"
+            );
         }
     }
 }
@@ -372,7 +385,7 @@ fn camera_inside_the_mesh_and_early_termination() {
         },
     )
     .expect("cpu");
-    assert_eq!(stopped.stats.segments, cpu.stats.segments);
+    assert_eq!(stopped.stats.counters.segments, cpu.stats.counters.segments);
     assert_close(
         "early-termination",
         &stopped.image,
@@ -397,8 +410,8 @@ fn camera_inside_the_mesh_and_early_termination() {
             },
         )
         .expect("render");
-    assert!(bounded.stats.steps_bound_hits > 0);
-    assert!(bounded.stats.steps <= 3 * 40 * 40 + bounded.stats.steps_bound_hits);
+    assert!(bounded.stats.counters.steps_bound_hits > 0);
+    assert!(bounded.stats.counters.steps <= 3 * 40 * 40 + bounded.stats.counters.steps_bound_hits);
 }
 
 #[test]

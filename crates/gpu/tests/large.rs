@@ -6,10 +6,11 @@ mod support;
 
 use glam::Vec3;
 use support::{assert_close, gpu, scene};
+use tetray_core::Camera;
 use tetray_gpu::{GpuError, GpuIntegrator, GpuRenderOptions, GpuScene, SceneData, TILE};
 use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunction};
 use tetray_raycast::scenes::{add_field, jittered_box, CellSplit, ScalarSpec};
-use tetray_raycast::{render_scalar, Camera, RenderOptions};
+use tetray_raycast::{render_scalar, RenderOptions};
 
 fn setup() -> (tetray_raycast::Scene, ScalarIntegrator, Camera) {
     let (lo, hi) = (Vec3::ZERO, Vec3::new(2.0, 1.0, 1.0));
@@ -78,7 +79,7 @@ fn split_bindings_and_tiles_render_like_the_reference() {
         },
     )
     .expect("cpu");
-    assert_eq!(frame.stats.steps, cpu.stats.steps);
+    assert_eq!(frame.stats.counters.steps, cpu.stats.counters.steps);
     assert_close("split-and-tiled", &frame.image, &cpu.image, 3e-5, 0, 3e-5);
 }
 

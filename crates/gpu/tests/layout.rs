@@ -3,7 +3,7 @@
 
 use std::mem::{offset_of, size_of};
 
-use tetray_gpu::layout::{Params, Tile};
+use tetray_gpu::layout::{IntegratorParams, Params, Tile, ViewParams};
 use tetray_gpu::shaders::raycast_source;
 
 /// (member name, offset) of WGSL struct `name`, and its size.
@@ -40,6 +40,31 @@ fn params_match_the_wgsl_struct() {
     let (members, span) = wgsl_layout(&module(), "Params");
     let rust = rust_offsets!(
         Params,
+        view,
+        bounds_min,
+        eye_inside,
+        bounds_max,
+        scene_abs_max,
+        width,
+        height,
+        max_steps,
+        stop_below_sum,
+        integrator,
+        tet_chunk,
+        point_chunk,
+        prim_offset,
+        face_offset,
+    );
+    assert_eq!(members, rust, "member names and offsets");
+    assert_eq!(span as usize, size_of::<Params>());
+}
+
+#[test]
+fn the_shared_blocks_match_the_wgsl_structs() {
+    let module = module();
+    let (members, span) = wgsl_layout(&module, "ViewParams");
+    let rust = rust_offsets!(
+        ViewParams,
         position,
         orthographic,
         right,
@@ -48,15 +73,13 @@ fn params_match_the_wgsl_struct() {
         half_width,
         direction,
         half_height,
-        bounds_min,
-        eye_inside,
-        bounds_max,
-        scene_abs_max,
-        width,
-        height,
-        max_steps,
+    );
+    assert_eq!(members, rust, "ViewParams member names and offsets");
+    assert_eq!(span as usize, size_of::<ViewParams>());
+    let (members, span) = wgsl_layout(&module, "IntegratorParams");
+    let rust = rust_offsets!(
+        IntegratorParams,
         method,
-        stop_below_sum,
         grey,
         split,
         knot_count,
@@ -68,13 +91,32 @@ fn params_match_the_wgsl_struct() {
         preint_lo,
         preint_scale,
         preint_length,
-        tet_chunk,
-        point_chunk,
-        prim_offset,
-        face_offset,
     );
-    assert_eq!(members, rust, "member names and offsets");
-    assert_eq!(span as usize, size_of::<Params>());
+    assert_eq!(members, rust, "IntegratorParams member names and offsets");
+    assert_eq!(span as usize, size_of::<IntegratorParams>());
+}
+
+/// The kernel's method constants are the ones the host uploads.
+#[test]
+fn method_constants_are_the_hosts_codes() {
+    let module = module();
+    for method in tetray_integrate::Method::ALL {
+        let Some(code) = method.gpu_code() else {
+            continue;
+        };
+        let name = format!("METHOD_{}", method.name().to_uppercase().replace('-', "_"));
+        let (_, constant) = module
+            .constants
+            .iter()
+            .find(|(_, c)| c.name.as_deref() == Some(name.as_str()))
+            .unwrap_or_else(|| panic!("no WGSL constant {name}"));
+        let value = &module.global_expressions[constant.init];
+        assert_eq!(
+            *value,
+            naga::Expression::Literal(naga::Literal::U32(code)),
+            "{name}"
+        );
+    }
 }
 
 #[test]

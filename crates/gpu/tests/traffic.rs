@@ -5,10 +5,11 @@
 //! one point) instead of 96 with all four points reloaded. The entry
 //! queries' reads of the BVH are counted beside it.
 
+use tetray_core::Camera;
 use tetray_gpu::twin::{render, render_traffic};
 use tetray_gpu::{GpuRenderOptions, IntegratorData, SceneData};
 use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunction};
-use tetray_raycast::{Camera, Scene};
+use tetray_raycast::Scene;
 
 const RECORD: u64 = 16;
 

@@ -1,7 +1,7 @@
 //! Errors of the integration crate.
 
-use crate::method::UnknownMethod;
 use crate::tf::TfError;
+use tetray_core::method::UnknownMethod;
 
 /// Why an integrator could not be set up.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

@@ -136,8 +136,6 @@ impl GammaSpacing {
 /// Smallest and largest accepted table sizes (nodes per axis).
 pub const PSI_TABLE_MIN: usize = 2;
 pub const PSI_TABLE_MAX: usize = 8192;
-/// The default table size, as in the dissertation (section 5.2.4).
-pub const PSI_TABLE_DEFAULT: usize = 1024;
 
 /// Psi sampled on an `N x N` grid of (gamma_b, gamma_f), f32, looked up
 /// bilinearly. Row-major with gamma_f selecting the row:

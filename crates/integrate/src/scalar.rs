@@ -13,12 +13,13 @@ use crate::kernels::{
     Reference, ReferenceSplit, Rgb, Riemann, SegmentKernel, Typed,
 };
 use crate::knots::{Material, OpacityMode, TfKnots};
-use crate::method::Method;
 use crate::preintegrated::PreintegrationTable;
-use crate::psi::{GammaSpacing, PsiTable, PSI_TABLE_DEFAULT};
+use crate::psi::{GammaSpacing, PsiTable};
 use crate::segment::{SegmentLight, SegmentParams};
 use crate::tf::TransferFunction;
 use crate::IntegrateError;
+use tetray_core::defaults::{PREINTEGRATION_TABLE_SIZE, PSI_TABLE_SIZE};
+use tetray_core::method::Method;
 
 /// Settings of a [`ScalarIntegrator`].
 #[derive(Debug, Clone, PartialEq)]
@@ -48,10 +49,10 @@ impl Default for IntegratorOptions {
         IntegratorOptions {
             unit_distance: 1.0,
             opacity_mode: OpacityMode::Exact,
-            psi_table_size: PSI_TABLE_DEFAULT,
+            psi_table_size: PSI_TABLE_SIZE,
             psi_spacing: GammaSpacing::default(),
             riemann_step: 0.25,
-            preintegration_table_size: 256,
+            preintegration_table_size: PREINTEGRATION_TABLE_SIZE,
             preintegration_length: 1.0,
             scalar_range: None,
             split_at_knots: true,

@@ -28,18 +28,7 @@ impl LoadedMesh {
 /// within `bounds` (see [`LoadedMesh::paraview_unit_distance`]; a mesh
 /// split over processes passes its global bounds and cell count).
 pub fn paraview_unit_distance((lo, hi): (glam::Vec3, glam::Vec3), cells: usize) -> f32 {
-    let diagonal = (hi - lo).as_dvec3().length();
-    let cells = cells as f64;
-    let u = if cells > 0.0 {
-        diagonal / cells.cbrt()
-    } else {
-        diagonal
-    };
-    if u > 0.0 && u.is_finite() {
-        u as f32
-    } else {
-        1.0
-    }
+    tetray_core::defaults::unit_distance((hi - lo).as_dvec3().length(), cells as f64)
 }
 
 /// Mean chord length of the tetrahedra: for random lines through a convex

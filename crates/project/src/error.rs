@@ -1,7 +1,7 @@
 //! Why the cell projection could not run.
 
+use tetray_core::{CameraError, ImageError};
 use tetray_gpu::GpuError;
-use tetray_raycast::{CameraError, ImageError};
 
 #[derive(Debug, thiserror::Error)]
 pub enum ProjectError {

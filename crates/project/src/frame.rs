@@ -3,8 +3,9 @@
 
 use std::time::{Duration, Instant};
 
+use tetray_core::{Camera, Image};
 use tetray_gpu::{GpuContext, GpuIntegrator, IntegratorData};
-use tetray_raycast::{Camera, Image, Scene};
+use tetray_raycast::Scene;
 
 use crate::draws::{expand, TetIntervals};
 use crate::layout::knot_scalars;
@@ -41,7 +42,7 @@ impl Default for ProjectOptions {
 /// adaptive sampling.
 pub fn samples_adaptively(integrator: &IntegratorData) -> bool {
     use tetray_integrate::Method;
-    let code = |m| tetray_gpu::layout::method_code(m);
+    let code = |m: Method| m.gpu_code();
     integrator.method != code(Method::Riemann).unwrap_or(u32::MAX)
         && integrator.method != code(Method::Preintegrated).unwrap_or(u32::MAX)
 }

@@ -5,9 +5,9 @@
 
 use std::time::{Duration, Instant};
 
+use tetray_core::Image;
 use tetray_gpu::readback::{read_buffer, readback_buffer, PassTimestamps};
 use tetray_gpu::{GpuContext, GpuIntegrator};
-use tetray_raycast::Image;
 use wgpu::util::DeviceExt;
 
 use crate::layout::{Params, STAT_COUNT, STAT_SEGMENTS};

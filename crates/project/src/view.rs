@@ -4,7 +4,8 @@
 //! `y = (height / 2 - py - 0.5) * pixel`, at unit depth or on the view plane).
 
 use glam::Vec3;
-use tetray_raycast::{Camera, CameraError};
+use tetray_core::{Camera, CameraError};
+use tetray_gpu::layout::ViewParams;
 
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct View {
@@ -20,6 +21,8 @@ pub struct View {
     pub width: u32,
     pub height: u32,
     pub orthographic: bool,
+    /// The same camera as the kernels' parameter block.
+    pub params: ViewParams,
 }
 
 impl View {
@@ -35,6 +38,7 @@ impl View {
             width,
             height,
             orthographic: rays.is_orthographic(),
+            params: ViewParams::new(&rays),
         })
     }
 

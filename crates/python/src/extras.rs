@@ -266,7 +266,7 @@ fn render_one(
         speed: tetray_compare::Speed {
             ms_per_frame: seconds * 1e3,
             tets_per_s: setup.tet_count() as f64 / seconds,
-            segments_per_s: frame.stats.segments as f64 / seconds,
+            segments_per_s: frame.stats.counters.segments as f64 / seconds,
         },
         image: frame.image,
     })

@@ -405,7 +405,7 @@ impl Scene {
 /// An image as a (height, width, 4) float32 array.
 fn image_array<'py>(
     py: Python<'py>,
-    image: &tetray_raycast::Image,
+    image: &tetray_core::Image,
 ) -> PyResult<Bound<'py, PyArray3<f32>>> {
     let flat: Vec<f32> = image.rgba.iter().flatten().copied().collect();
     flat.into_pyarray(py)

@@ -5,12 +5,13 @@ use std::path::Path;
 use std::time::Instant;
 
 use tetray_boundary_bvh::BuildPreset;
+use tetray_core::Camera;
 use tetray_integrate::{
     IntegratorOptions, KernelVisitor, Method, ScalarIntegrator, SegmentKernel, TransferFunction,
     Typed,
 };
 use tetray_io::{load, LoadOptions};
-use tetray_raycast::{render_cpu, Camera, RenderOptions, Scene, SegmentIntegrator};
+use tetray_raycast::{render_cpu, RenderOptions, Scene, SegmentIntegrator};
 
 struct Absorb {
     cheap: bool,
@@ -107,13 +108,13 @@ fn time_frames<I: SegmentIntegrator>(
         println!(
             "{:.4}s rays {} hit {} segs {} steps {} entries {} fail {} bound {} -> {:.1} Mseg/s",
             s.elapsed.as_secs_f64(),
-            s.rays,
-            s.rays_hit,
-            s.segments,
-            s.steps,
-            s.entries,
-            s.walk_failures,
-            s.steps_bound_hits,
+            s.counters.rays,
+            s.counters.rays_hit,
+            s.counters.segments,
+            s.counters.steps,
+            s.counters.entries,
+            s.counters.walk_failures,
+            s.counters.steps_bound_hits,
             s.segments_per_second() / 1e6
         );
     }

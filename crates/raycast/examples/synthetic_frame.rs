@@ -3,9 +3,10 @@
 
 use glam::Vec3;
 use tetray_boundary_bvh::BuildPreset;
+use tetray_core::Camera;
 use tetray_mesh::Topology;
 use tetray_raycast::scenes::{add_field, box_grid, CellSplit, ScalarSpec};
-use tetray_raycast::{render_cpu, Camera, RenderOptions, Scene, SegmentIntegrator};
+use tetray_raycast::{render_cpu, RenderOptions, Scene, SegmentIntegrator};
 
 struct Absorb;
 impl SegmentIntegrator for Absorb {
@@ -52,7 +53,7 @@ fn main() {
     for _ in 0..frames {
         let out = render_cpu(&scene, &camera, &Absorb, &opts).unwrap();
         best = best.min(out.stats.elapsed.as_secs_f64());
-        steps = out.stats.steps;
+        steps = out.stats.counters.steps;
     }
     println!(
         "{} tets: best {best:.4}s, {steps} steps, {:.1} ns/step",

@@ -5,12 +5,14 @@ use std::time::{Duration, Instant};
 
 use glam::Vec3;
 use rayon::prelude::*;
-use tetray_boundary_bvh::watertight::RayFrame;
+use tetray_core::watertight::RayFrame;
 use tetray_integrate::{KernelVisitor, SampledSegment, ScalarIntegrator, SegmentKernel, Typed};
 
-use crate::camera::{Camera, CameraError, PixelRays};
+use tetray_core::camera::{Camera, CameraError, PixelRays};
+use tetray_core::image::{Image, ImageError};
+use tetray_core::WalkCounters;
+
 use crate::entries::EntryBins;
-use crate::image::{Image, ImageError};
 use crate::scene::Scene;
 use crate::walk::{RayCounters, SegmentIntegrator, WalkLimits, Walker};
 
@@ -49,20 +51,9 @@ impl Default for RenderOptions {
 /// Counters of one frame.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct RenderStats {
-    /// Rays cast (one per pixel).
-    pub rays: u64,
-    /// Rays that entered the mesh at least once.
-    pub rays_hit: u64,
-    /// Segments integrated (positive length, in front of the eye).
-    pub segments: u64,
-    /// Tetrahedra visited.
-    pub steps: u64,
-    /// BVH queries that found a boundary face (entries and re-entries).
-    pub entries: u64,
-    /// Rays stopped by the step bound (a correct mesh never hits it).
-    pub steps_bound_hits: u64,
-    /// Rays stopped in a tetrahedron without an exit face (degenerate).
-    pub walk_failures: u64,
+    /// What the walk counted (BVH queries that found a boundary face are
+    /// its entries).
+    pub counters: WalkCounters,
     /// Whether rays started inside the mesh's bounds (and were integrated
     /// from their origin, walking from the first entry behind it).
     pub eye_inside_bounds: bool,
@@ -75,29 +66,25 @@ pub struct RenderStats {
 
 impl RenderStats {
     fn add(&mut self, ray: &RayCounters) {
-        self.rays += 1;
-        self.rays_hit += u64::from(ray.hit);
-        self.segments += ray.segments;
-        self.steps += ray.steps;
-        self.entries += ray.entries;
-        self.steps_bound_hits += u64::from(ray.step_bound_hit);
-        self.walk_failures += u64::from(ray.walk_failure);
+        let c = &mut self.counters;
+        c.rays += 1;
+        c.rays_hit += u64::from(ray.hit);
+        c.segments += ray.segments;
+        c.steps += ray.steps;
+        c.entries += ray.entries;
+        c.steps_bound_hits += u64::from(ray.step_bound_hit);
+        c.walk_failures += u64::from(ray.walk_failure);
     }
 
     pub(crate) fn merge(mut self, other: RenderStats) -> RenderStats {
-        self.rays += other.rays;
-        self.rays_hit += other.rays_hit;
-        self.segments += other.segments;
-        self.steps += other.steps;
-        self.entries += other.entries;
-        self.steps_bound_hits += other.steps_bound_hits;
-        self.walk_failures += other.walk_failures;
+        self.counters = self.counters.merge(other.counters);
         self
     }
 
     /// Integrated segments per second of wall time.
     pub fn segments_per_second(&self) -> f64 {
-        self.segments as f64 / self.elapsed.as_secs_f64().max(1e-12)
+        self.counters
+            .segments_per_second(self.elapsed.as_secs_f64())
     }
 }
 

@@ -18,11 +18,11 @@ use std::cmp::Ordering;
 
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
-use tetray_boundary_bvh::watertight::{entry_distance, RayFrame};
 use tetray_boundary_bvh::EntryHit;
+use tetray_core::watertight::{entry_distance, RayFrame};
 
-use crate::camera::PixelRays;
 use crate::scene::Scene;
+use tetray_core::camera::PixelRays;
 
 /// Entries kept per pixel.
 pub(crate) const LIST_LEN: usize = 8;
@@ -441,13 +441,13 @@ fn widened_edges(sx: [f64; 3], sy: [f64; 3], pad: f64) -> Option<[[f64; 3]; 3]> 
 #[cfg(test)]
 mod tests {
     use glam::Vec3;
-    use tetray_boundary_bvh::watertight::{cross_triangle, RayFrame};
     use tetray_boundary_bvh::{brute_force_first_entry, reentry_start, EntryHit};
+    use tetray_core::watertight::{cross_triangle, RayFrame};
     use tetray_mesh::Topology;
 
     use super::*;
-    use crate::camera::Camera;
     use crate::scenes::{add_field, box_grid, hollow_box, jittered_box, merge, CellSplit};
+    use tetray_core::camera::Camera;
 
     fn scene(mut mesh: tetray_mesh::TetMesh) -> Scene {
         add_field(&mut mesh, "s", crate::scenes::ScalarSpec::Constant(1.0));

@@ -15,10 +15,10 @@ use std::time::Instant;
 use rayon::prelude::*;
 use tetray_integrate::{KernelVisitor, ScalarIntegrator, SegmentKernel, Typed};
 
-use crate::camera::Camera;
 use crate::cpu::{in_pool, Frame, RenderError, RenderOptions, RenderStats, BAND_ROWS};
 use crate::scene::Scene;
 use crate::walk::{SegmentIntegrator, WalkLimits, Walker};
+use tetray_core::camera::Camera;
 
 /// The light of one interval of one pixel's ray inside a mesh: 32 bytes,
 /// sent as they are between processes.
@@ -177,13 +177,17 @@ mod tests {
             assert_eq!(with.stats.entry_lists, camera != inside);
             assert!(!without.stats.entry_lists);
             let (a, b) = (&with.fragments, &without.fragments);
-            assert!(with.stats.entries > with.stats.rays_hit, "rays re-enter");
-            assert!(a.len() >= with.stats.rays_hit as usize);
+            assert!(
+                with.stats.counters.entries > with.stats.counters.rays_hit,
+                "rays re-enter"
+            );
+            assert!(a.len() >= with.stats.counters.rays_hit as usize);
             assert_eq!(
                 bytemuck::cast_slice::<_, u32>(a),
                 bytemuck::cast_slice::<_, u32>(b)
             );
-            let counters = |s: &RenderStats| (s.segments, s.steps, s.entries);
+            let counters =
+                |s: &RenderStats| (s.counters.segments, s.counters.steps, s.counters.entries);
             assert_eq!(counters(&with.stats), counters(&without.stats));
         }
     }

@@ -1,6 +1,5 @@
-//! Cameras (VTK conventions), float images with EXR/PNG output, synthetic
-//! test meshes, and the CPU reference ray caster that walks a tetrahedral
-//! mesh cell to cell.
+//! The CPU reference ray caster that walks a tetrahedral mesh cell to cell,
+//! and synthetic test meshes.
 //!
 //! - [`Scene`]: a mesh with its topology, boundary BVH and active field;
 //! - [`render_cpu`]: one ray per pixel; each enters the mesh through the
@@ -10,24 +9,20 @@
 //! - [`render_fragments`]: the same rays, the light of each interval inside
 //!   the mesh kept apart as a [`Fragment`] (for compositing across pieces).
 
-pub mod camera;
 mod cpu;
 mod entries;
 mod face;
 mod fragment;
-pub mod image;
 pub mod order;
 mod scene;
 pub mod scenes;
 mod walk;
 
-pub use camera::{relative_to_origin, Camera, CameraError, PixelRays, ViewBasis};
 pub use cpu::{
     render_cpu, render_cpu_with_progress, render_scalar, render_scalar_with_progress, trace_pixel,
     wide_cpu, RayTrace, RenderError, RenderOptions, RenderOutput, RenderStats,
 };
 pub use fragment::{render_fragments, render_scalar_fragments, Fragment, FragmentOutput};
-pub use image::{Image, ImageError};
 pub use order::Reorder;
 pub use scene::{CellOrder, Scene, SceneError, WalkTet, FINAL_EXIT};
 pub use walk::{packed_exit_table, SegmentIntegrator};

@@ -5,7 +5,7 @@
 
 use glam::{Vec3, Vec3A};
 use tetray_boundary_bvh::reentry_start;
-use tetray_boundary_bvh::watertight::{Projector, RayFrame};
+use tetray_core::watertight::{Projector, RayFrame};
 use tetray_integrate::fastmath::max_f32;
 use tetray_integrate::SampledSegment;
 use tetray_mesh::FACE_VERTICES;

@@ -3,7 +3,7 @@
 //! Tolerance 1e-5: f32 positions of magnitude < 20, rotations done in f64.
 
 use glam::Vec3;
-use tetray_raycast::{Camera, CameraError};
+use tetray_core::{Camera, CameraError};
 
 const TOL: f32 = 1e-5;
 

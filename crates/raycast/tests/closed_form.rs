@@ -28,16 +28,15 @@ use support::optics::{
     beer_lambert, linear_field_light, luminance_variation, transfer_function, LinearField, TfF64,
 };
 use support::{box_chord, box_interval, scene};
-use tetray_boundary_bvh::watertight::RayFrame;
+use tetray_core::watertight::RayFrame;
+use tetray_core::{Camera, Image};
 use tetray_integrate::{
     IntegratorOptions, Method, OpacityMode, ScalarIntegrator, TransferFunction,
 };
 use tetray_raycast::scenes::{
     add_field, box_grid, hollow_box, jittered_box, two_boxes, CellSplit, ScalarSpec,
 };
-use tetray_raycast::{
-    render_scalar, Camera, Image, RenderOptions, RenderOutput, RenderStats, Scene,
-};
+use tetray_raycast::{render_scalar, RenderOptions, RenderOutput, RenderStats, Scene};
 
 /// Pixels per side of the oblique views.
 const SIZE: u32 = 40;
@@ -97,9 +96,12 @@ fn integrator(
 
 /// The mesh was walked completely: every ray that met it finished its walk.
 fn assert_clean(stats: &RenderStats, what: &str) {
-    assert_eq!(stats.walk_failures, 0, "{what}: walk failures");
-    assert_eq!(stats.steps_bound_hits, 0, "{what}: step bound hits");
-    assert!(stats.rays_hit > 0, "{what}: no ray meets the mesh");
+    assert_eq!(stats.counters.walk_failures, 0, "{what}: walk failures");
+    assert_eq!(
+        stats.counters.steps_bound_hits, 0,
+        "{what}: step bound hits"
+    );
+    assert!(stats.counters.rays_hit > 0, "{what}: no ray meets the mesh");
 }
 
 fn render(
@@ -454,7 +456,7 @@ fn rays_through_vertices_edges_and_faces_match_closed_forms() {
         for (view, camera) in axis_views() {
             let every_ray_hits = |out: &RenderOutput| {
                 assert_eq!(
-                    out.stats.rays_hit,
+                    out.stats.counters.rays_hit,
                     u64::from(GRID_SIZE * GRID_SIZE),
                     "{split:?} {view}"
                 );
@@ -582,7 +584,10 @@ fn early_termination_stops_just_past_the_threshold() {
             );
         }
         assert!(stopped_rays > 0, "{view}: no ray reaches the threshold");
-        let (s_full, s_stopped) = (full.stats.segments, stopped.stats.segments);
+        let (s_full, s_stopped) = (
+            full.stats.counters.segments,
+            stopped.stats.counters.segments,
+        );
         eprintln!(
             "{TEST}: {view}: disabled: max error {full_error:.2e} (tolerance {tolerance:.1e}); \
              {stopped_rays} rays stopped, alpha at most {highest:.4} (bound {:.4}), \

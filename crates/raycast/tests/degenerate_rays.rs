@@ -9,8 +9,9 @@ mod support;
 
 use glam::{DVec3, Vec3};
 use support::{box_chord, box_interval, linear_integral, scene, BeerLambert, LengthAndScalar};
+use tetray_core::Camera;
 use tetray_raycast::scenes::{add_field, box_grid, CellSplit, ScalarSpec};
-use tetray_raycast::{render_cpu, Camera, RenderOptions};
+use tetray_raycast::{render_cpu, RenderOptions};
 
 /// 15 pixels of 0.25 world units: pixel centres at 0.25, 0.5, .., 3.75 on
 /// the grid [0, 4]^3 of unit cells, i.e. on vertices, edges, cell faces and
@@ -65,9 +66,9 @@ fn rays_through_vertices_edges_and_faces_match_the_closed_form() {
             let walk = render_cpu(&scene, camera, &LengthAndScalar, &opts).unwrap();
             let light = render_cpu(&scene, camera, &beer, &opts).unwrap();
             for stats in [walk.stats, light.stats] {
-                assert_eq!(stats.walk_failures, 0, "{what}");
-                assert_eq!(stats.steps_bound_hits, 0, "{what}");
-                assert_eq!(stats.rays_hit, u64::from(SIZE * SIZE), "{what}");
+                assert_eq!(stats.counters.walk_failures, 0, "{what}");
+                assert_eq!(stats.counters.steps_bound_hits, 0, "{what}");
+                assert_eq!(stats.counters.rays_hit, u64::from(SIZE * SIZE), "{what}");
             }
             let mut bad = Vec::new();
             for py in 0..SIZE {

@@ -6,12 +6,11 @@
 
 use glam::Vec3;
 use tetray_boundary_bvh::BuildPreset;
+use tetray_core::Camera;
 use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunction};
 use tetray_mesh::{TetMesh, Topology};
 use tetray_raycast::scenes::{add_field, box_grid, hollow_box, CellSplit, ScalarSpec};
-use tetray_raycast::{
-    render_scalar, render_scalar_fragments, Camera, Fragment, RenderOptions, Scene,
-};
+use tetray_raycast::{render_scalar, render_scalar_fragments, Fragment, RenderOptions, Scene};
 
 fn scene(mut mesh: TetMesh) -> Scene {
     add_field(
@@ -77,7 +76,7 @@ fn hollow_box_fragments_composite_to_the_whole_ray() {
     let (camera, integrator, opts) = setup(&scene);
     let whole = render_scalar(&scene, &camera, &integrator, &opts).unwrap();
     let split = render_scalar_fragments(&scene, &camera, &integrator, &opts).unwrap();
-    assert_eq!(split.stats.segments, whole.stats.segments);
+    assert_eq!(split.stats.counters.segments, whole.stats.counters.segments);
     let mut per_pixel = vec![Vec::new(); 48 * 48];
     for f in &split.fragments {
         per_pixel[f.pixel as usize].push(*f);
@@ -106,7 +105,7 @@ fn a_convex_box_has_one_fragment_per_hit_pixel_equal_to_it() {
     let (camera, integrator, opts) = setup(&scene);
     let whole = render_scalar(&scene, &camera, &integrator, &opts).unwrap();
     let split = render_scalar_fragments(&scene, &camera, &integrator, &opts).unwrap();
-    assert_eq!(split.fragments.len() as u64, whole.stats.rays_hit);
+    assert_eq!(split.fragments.len() as u64, whole.stats.counters.rays_hit);
     for f in &split.fragments {
         assert_eq!(blend(&[*f]), whole.image.rgba[f.pixel as usize]);
     }

@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use glam::Vec3;
-use tetray_raycast::{Image, ImageError};
+use tetray_core::{Image, ImageError};
 
 fn temp_path(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("tetray-raycast-test-{}", std::process::id()));

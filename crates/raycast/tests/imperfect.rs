@@ -23,11 +23,12 @@ use support::box_chord;
 use support::compare::{assert_matches, expected_image, views, Expected, Worst};
 use support::optics::{beer_lambert, transfer_function};
 use tetray_boundary_bvh::BuildPreset;
+use tetray_core::{relative_to_origin, Camera, Image};
 use tetray_integrate::{IntegratorOptions, Method, OpacityMode, ScalarIntegrator};
 use tetray_io::{load, LoadOptions};
 use tetray_mesh::{LoadedMesh, MeshSummary};
 use tetray_raycast::scenes::{jittered_box, CellSplit, ScalarSpec};
-use tetray_raycast::{relative_to_origin, render_scalar, Camera, Image, RenderOptions, Scene};
+use tetray_raycast::{render_scalar, RenderOptions, Scene};
 
 const SIZE: u32 = 40;
 const ANGLES: [(f32, f32); 2] = [(35.0, 25.0), (-120.0, -40.0)];
@@ -82,8 +83,8 @@ fn render(scene: &Scene, camera: &Camera, integrator: &ScalarIntegrator) -> Imag
         ..RenderOptions::default()
     };
     let out = render_scalar(scene, camera, integrator, &opts).unwrap();
-    assert_eq!(out.stats.walk_failures, 0);
-    assert_eq!(out.stats.steps_bound_hits, 0);
+    assert_eq!(out.stats.counters.walk_failures, 0);
+    assert_eq!(out.stats.counters.steps_bound_hits, 0);
     out.image
 }
 

@@ -122,19 +122,19 @@ fn scene(mesh: TetMesh, spec: ScalarSpec, name: &str) -> Scene {
 /// first of each ray) into `reentries`.
 fn render(
     scene: &Scene,
-    camera: &tetray_raycast::Camera,
+    camera: &tetray_core::Camera,
     integrator: &ScalarIntegrator,
     reentries: &mut u64,
-) -> tetray_raycast::Image {
+) -> tetray_core::Image {
     let opts = RenderOptions {
         width: SIZE,
         height: SIZE,
         ..RenderOptions::default()
     };
     let out = render_scalar(scene, camera, integrator, &opts).unwrap();
-    assert_eq!(out.stats.walk_failures, 0);
-    assert_eq!(out.stats.steps_bound_hits, 0);
-    *reentries += out.stats.entries - out.stats.rays_hit;
+    assert_eq!(out.stats.counters.walk_failures, 0);
+    assert_eq!(out.stats.counters.steps_bound_hits, 0);
+    *reentries += out.stats.counters.entries - out.stats.counters.rays_hit;
     out.image
 }
 
@@ -249,7 +249,7 @@ fn rays_through_interface_vertices_and_edges_are_beer_lambert() {
                 let (mut offset, mut up) = (Vec3::ZERO, Vec3::ZERO);
                 offset[axis] = 10.0 * sign;
                 up[(axis + 1) % 3] = 1.0;
-                let camera = tetray_raycast::Camera {
+                let camera = tetray_core::Camera {
                     position: Vec3::splat(2.0) + offset,
                     focal_point: Vec3::splat(2.0),
                     view_up: up,
@@ -262,9 +262,13 @@ fn rays_through_interface_vertices_and_edges_are_beer_lambert() {
                     ..RenderOptions::default()
                 };
                 let out = render_scalar(&scene, &camera, &integrator, &opts).unwrap();
-                assert_eq!(out.stats.walk_failures, 0);
-                assert_eq!(out.stats.steps_bound_hits, 0);
-                assert_eq!(out.stats.rays_hit, u64::from(PIXELS * PIXELS), "{name}");
+                assert_eq!(out.stats.counters.walk_failures, 0);
+                assert_eq!(out.stats.counters.steps_bound_hits, 0);
+                assert_eq!(
+                    out.stats.counters.rays_hit,
+                    u64::from(PIXELS * PIXELS),
+                    "{name}"
+                );
                 let expected = expected_image(&camera, PIXELS, PIXELS, |ray| {
                     beer_lambert(lum.as_dvec3(), tau, box_chord(ray, lo, hi))
                 });

@@ -6,11 +6,12 @@ use std::path::Path;
 
 use glam::Vec3;
 use tetray_boundary_bvh::BuildPreset;
+use tetray_core::Camera;
 use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunction};
 use tetray_io::{load, LoadOptions};
 use tetray_mesh::{TetMesh, Topology};
 use tetray_raycast::scenes::{add_field, hollow_box, CellSplit, ScalarSpec};
-use tetray_raycast::{render_scalar, Camera, CellOrder, RenderOptions, Scene};
+use tetray_raycast::{render_scalar, CellOrder, RenderOptions, Scene};
 
 /// Largest per-pixel difference allowed between the two orders (the walk
 /// sees the same tetrahedra with the same local vertex order, so the
@@ -107,10 +108,13 @@ fn check_images(file: &Scene, morton: &Scene, size: u32, what: &str) {
         for (v, camera) in views(file).iter().enumerate() {
             let a = render_scalar(file, camera, &a_int, &opts).unwrap();
             let b = render_scalar(morton, camera, &b_int, &opts).unwrap();
-            assert!(a.stats.rays_hit > 0, "{what} view {v}: empty");
-            assert_eq!(a.stats.segments, b.stats.segments, "{what} view {v}");
-            assert_eq!(b.stats.walk_failures, 0);
-            assert_eq!(b.stats.steps_bound_hits, 0);
+            assert!(a.stats.counters.rays_hit > 0, "{what} view {v}: empty");
+            assert_eq!(
+                a.stats.counters.segments, b.stats.counters.segments,
+                "{what} view {v}"
+            );
+            assert_eq!(b.stats.counters.walk_failures, 0);
+            assert_eq!(b.stats.counters.steps_bound_hits, 0);
             let worst = a
                 .image
                 .rgba

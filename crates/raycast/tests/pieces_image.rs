@@ -18,11 +18,12 @@ use std::path::{Path, PathBuf};
 
 use glam::{DVec3, Vec3};
 use tetray_boundary_bvh::BuildPreset;
+use tetray_core::{Camera, Image};
 use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunction};
 use tetray_io::vtk::{read_vtu_file, write_vtu, VtuEncoding};
 use tetray_io::{load, LoadOptions};
 use tetray_mesh::{ScalarField, TetMesh};
-use tetray_raycast::{render_scalar, Camera, Image, RenderOptions, Scene};
+use tetray_raycast::{render_scalar, RenderOptions, Scene};
 
 fn data() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/real/blood_vessels")

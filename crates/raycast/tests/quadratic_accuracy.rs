@@ -19,11 +19,12 @@ use glam::{DVec3, Vec3};
 use support::box_interval;
 use support::compare::{deviation, expected_image, views, Expected};
 use support::optics::transfer_function;
-use tetray_boundary_bvh::watertight::RayFrame;
 use tetray_boundary_bvh::BuildPreset;
+use tetray_core::watertight::RayFrame;
+use tetray_core::Image;
 use tetray_integrate::{reference, IntegratorOptions, Method, OpacityMode, ScalarIntegrator};
 use tetray_io::vtk::{read_legacy_bytes_with, Linearize, ReadOptions};
-use tetray_raycast::{render_scalar, Image, RenderOptions, Scene};
+use tetray_raycast::{render_scalar, RenderOptions, Scene};
 
 /// Cubes per side of the unit box; each cut into 6 quadratic tetrahedra.
 const CUBES: usize = 2;
@@ -198,7 +199,7 @@ fn subdivided_quadratic_tetra_render_closer_to_the_f64_integral_than_corners() {
         let expected = expected_image(camera, SIZE, SIZE, reference_pixel);
         for (k, scene) in [&subdivided, &corners].into_iter().enumerate() {
             let out = render_scalar(scene, camera, &integrator, &render_options).unwrap();
-            assert_eq!(out.stats.walk_failures, 0, "{name}");
+            assert_eq!(out.stats.counters.walk_failures, 0, "{name}");
             let d = deviation(&out.image, &expected, 0.0);
             worst[k] = worst[k].max(d.max);
             mean[k] += mean_error(&out.image, &expected) / cameras.len() as f64;

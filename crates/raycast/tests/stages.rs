@@ -5,13 +5,14 @@
 //! the same bits, for every method.
 
 use glam::Vec3;
+use tetray_core::Camera;
 use tetray_integrate::{
     ColorPoint, IntegratorOptions, KernelVisitor, Method, OpacityPoint, ScalarIntegrator,
     SegmentKernel, TransferFunction, Typed,
 };
 use tetray_mesh::Topology;
 use tetray_raycast::scenes::{add_field, hollow_box, CellSplit, ScalarSpec};
-use tetray_raycast::{render_scalar, trace_pixel, Camera, RenderOptions, Scene};
+use tetray_raycast::{render_scalar, trace_pixel, RenderOptions, Scene};
 
 /// One pixel traced alone with the integrator's method fixed in its type,
 /// as the frame loop has it.
@@ -102,7 +103,10 @@ fn rays_stepped_together_give_the_bits_of_rays_traced_alone() {
         let integrator = ScalarIntegrator::new(method, &tf, &options).unwrap();
         for camera in [&outside, &inside] {
             let frame = render_scalar(&scene, camera, &integrator, &opts).unwrap();
-            assert!(frame.stats.segments > 2000 && frame.stats.entries > frame.stats.rays_hit);
+            assert!(
+                frame.stats.counters.segments > 2000
+                    && frame.stats.counters.entries > frame.stats.counters.rays_hit
+            );
             for y in 0..opts.height {
                 for x in 0..opts.width {
                     let alone = integrator.dispatch(Trace {

@@ -6,10 +6,11 @@ mod support;
 
 use glam::Vec3;
 use support::{box_chord, box_interval, linear_integral, scene, LengthAndScalar};
+use tetray_core::Camera;
 use tetray_raycast::scenes::{
     add_field, box_grid, hollow_box, jittered_box, two_boxes, CellSplit, ScalarSpec,
 };
-use tetray_raycast::{render_cpu, Camera, RenderOptions, RenderStats, Scene};
+use tetray_raycast::{render_cpu, RenderOptions, RenderStats, Scene};
 
 const SIZE: u32 = 24;
 
@@ -52,9 +53,12 @@ fn options() -> RenderOptions {
 }
 
 fn assert_clean(stats: &RenderStats, what: &str) {
-    assert_eq!(stats.walk_failures, 0, "{what}: walk failures");
-    assert_eq!(stats.steps_bound_hits, 0, "{what}: step bound hits");
-    assert_eq!(stats.rays, u64::from(SIZE * SIZE), "{what}");
+    assert_eq!(stats.counters.walk_failures, 0, "{what}: walk failures");
+    assert_eq!(
+        stats.counters.steps_bound_hits, 0,
+        "{what}: step bound hits"
+    );
+    assert_eq!(stats.counters.rays, u64::from(SIZE * SIZE), "{what}");
 }
 
 /// Renders every view and checks each pixel's length against `chord`.
@@ -62,12 +66,12 @@ fn check_lengths(
     scene: &Scene,
     lo: Vec3,
     hi: Vec3,
-    chord: impl Fn(&tetray_boundary_bvh::watertight::RayFrame) -> f64,
+    chord: impl Fn(&tetray_core::watertight::RayFrame) -> f64,
 ) {
     for (v, camera) in views(lo, hi).iter().enumerate() {
         let out = render_cpu(scene, camera, &LengthAndScalar, &options()).unwrap();
         assert_clean(&out.stats, &format!("view {v}"));
-        assert!(out.stats.rays_hit > 0, "view {v} misses the mesh");
+        assert!(out.stats.counters.rays_hit > 0, "view {v} misses the mesh");
         for py in 0..SIZE {
             for px in 0..SIZE {
                 let ray = camera.ray(px, py, SIZE, SIZE).unwrap();
@@ -214,11 +218,14 @@ fn step_bound_stops_rays_and_is_counted() {
     };
     let out = render_cpu(&scene, &camera, &LengthAndScalar, &opts).unwrap();
     // Every ray through the middle crosses at least 4 cells of 5 tets.
-    assert!(out.stats.steps_bound_hits > 0);
-    assert_eq!(out.stats.steps_bound_hits, out.stats.rays_hit);
+    assert!(out.stats.counters.steps_bound_hits > 0);
+    assert_eq!(
+        out.stats.counters.steps_bound_hits,
+        out.stats.counters.rays_hit
+    );
     let full = render_cpu(&scene, &camera, &LengthAndScalar, &options()).unwrap();
-    assert_eq!(full.stats.steps_bound_hits, 0);
-    assert!(full.stats.segments > out.stats.segments);
+    assert_eq!(full.stats.counters.steps_bound_hits, 0);
+    assert!(full.stats.counters.segments > out.stats.counters.segments);
 }
 
 #[test]
@@ -272,6 +279,6 @@ fn progress_reaches_every_row_and_threads_do_not_change_pixels() {
         )
         .unwrap();
         assert_eq!(other.image, out.image);
-        assert_eq!(other.stats.segments, out.stats.segments);
+        assert_eq!(other.stats.counters.segments, out.stats.counters.segments);
     }
 }

@@ -8,10 +8,11 @@ use std::time::Instant;
 
 use glam::Vec3;
 use tetray_boundary_bvh::BuildPreset;
+use tetray_core::Camera;
 use tetray_integrate::{
     ColorPoint, IntegratorOptions, Method, OpacityPoint, ScalarIntegrator, TransferFunction,
 };
-use tetray_raycast::{render_scalar, Camera, RenderOptions, Scene};
+use tetray_raycast::{render_scalar, RenderOptions, Scene};
 use tetray_shearwarp::{Classification, ClassifyOptions, RegularGrid, ShearWarp, ShearWarpOptions};
 
 const SIZE: u32 = 512;
@@ -150,7 +151,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             if parallel { "parallel" } else { "perspective" },
             1.0 / s,
             s,
-            out.stats.segments
+            out.stats.counters.segments
         );
     }
     Ok(())

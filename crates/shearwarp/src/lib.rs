@@ -36,10 +36,10 @@ pub use classify::Classification;
 pub use grid::RegularGrid;
 pub use render::{ShearWarpOptions, ShearWarpOutput, ShearWarpStats};
 
+use tetray_core::{CameraError, ImageError};
 use tetray_integrate::{
     IntegrateError, OpacityMode, PreintegrationTable, TfKnots, TransferFunction,
 };
-use tetray_raycast::{CameraError, ImageError};
 
 use classify::Classifier;
 use stack::Stack;

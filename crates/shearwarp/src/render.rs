@@ -14,7 +14,7 @@ use std::time::{Duration, Instant};
 
 use glam::{DVec3, Vec3A};
 use rayon::prelude::*;
-use tetray_raycast::{Camera, Image};
+use tetray_core::{Camera, Image};
 
 use crate::classify::SlabLight;
 use crate::stack::{axes_of, Stack};

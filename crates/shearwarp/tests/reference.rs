@@ -64,7 +64,7 @@ fn render(
     el: f32,
     parallel: bool,
     opts: ShearWarpOptions,
-) -> tetray_raycast::Image {
+) -> tetray_core::Image {
     let cam = view(s.grid(), az, el, parallel);
     s.render(&cam, &opts).unwrap().image
 }

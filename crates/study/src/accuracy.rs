@@ -246,9 +246,7 @@ pub fn run(
                     .map(|&p| cpu_light(method, model, p, d))
                     .collect::<Result<Vec<_>, _>>()?;
                 record(Device::Cpu, method, lights);
-                if let (Some((ctx, kernel)), Some(_)) =
-                    (&gpu, tetray_gpu::layout::method_code(method))
-                {
+                if let (Some((ctx, kernel)), Some(_)) = (&gpu, method.gpu_code()) {
                     if method == Method::Riemann {
                         continue;
                     }

@@ -35,7 +35,7 @@ pub enum StudyError {
     #[error(transparent)]
     Render(#[from] tetray_raycast::RenderError),
     #[error(transparent)]
-    Camera(#[from] tetray_raycast::CameraError),
+    Camera(#[from] tetray_core::CameraError),
     #[error(transparent)]
     Build(#[from] tetray_raycast::scenes::BuildError),
     #[error(transparent)]

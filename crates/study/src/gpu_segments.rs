@@ -5,9 +5,9 @@
 //! the kernel the GPU ray caster runs.
 
 use bytemuck::{Pod, Zeroable};
-use tetray_gpu::layout::{method_code, Params};
+use tetray_gpu::layout::{IntegratorParams, Params};
 use tetray_gpu::readback::{read_buffer, readback_buffer};
-use tetray_gpu::shaders::{COMMON, INTEGRATE};
+use tetray_gpu::shaders::{module, COMMON, INTEGRATE};
 use tetray_gpu::GpuContext;
 use tetray_integrate::{GammaSpacing, Method, PsiTable};
 use wgpu::util::DeviceExt;
@@ -20,7 +20,7 @@ pub const SEGMENTS: &str = include_str!("../../../shaders/segments.wgsl");
 /// The module: the shared declarations, the integration methods, the
 /// per-segment entry point `segments`.
 pub fn segments_source() -> String {
-    [COMMON, INTEGRATE, SEGMENTS].join("\n")
+    module(&[COMMON, INTEGRATE, SEGMENTS])
 }
 
 /// One segment as the kernel reads it (two `vec4<f32>`).
@@ -164,7 +164,7 @@ impl SegmentKernel {
         unit_distance: f32,
         segments: &[GpuSegment],
     ) -> Result<Vec<[f32; 2]>, StudyError> {
-        let code = method_code(method).ok_or_else(|| StudyError::GpuKernel {
+        let code = method.gpu_code().ok_or_else(|| StudyError::GpuKernel {
             what: "choosing the method",
             message: format!("{method} has no GPU kernel"),
         })?;
@@ -181,10 +181,13 @@ impl SegmentKernel {
             });
         }
         let params = Params {
-            method: code,
-            grey: 1,
-            psi_size: self.psi_size,
-            inv_unit_distance: 1.0 / unit_distance,
+            integrator: IntegratorParams {
+                method: code,
+                grey: 1,
+                psi_size: self.psi_size,
+                inv_unit_distance: 1.0 / unit_distance,
+                ..IntegratorParams::zeroed()
+            },
             ..Params::zeroed()
         };
         let device = &ctx.device;

@@ -16,10 +16,11 @@
 use glam::{DVec3, Vec3};
 use serde::Serialize;
 use tetray_boundary_bvh::BuildPreset;
+use tetray_core::{Camera, Image};
 use tetray_integrate::{
     ColorPoint, IntegratorOptions, Method, OpacityPoint, ScalarIntegrator, TransferFunction,
 };
-use tetray_raycast::{render_scalar, Camera, Image, RenderOptions, Scene};
+use tetray_raycast::{render_scalar, RenderOptions, Scene};
 use tetray_shearwarp::{Classification, ClassifyOptions, RegularGrid, ShearWarp, ShearWarpOptions};
 
 use crate::output::{Cell, Csv, OutputDir};

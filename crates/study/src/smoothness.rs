@@ -16,12 +16,13 @@
 use glam::{Vec3, Vec3A};
 use serde::Serialize;
 use tetray_boundary_bvh::BuildPreset;
+use tetray_core::Camera;
 use tetray_gpu::{GpuContext, GpuIntegrator, GpuRaycaster, GpuRenderOptions, GpuScene};
 use tetray_integrate::reference::{attenuation_segment, opacity_segment};
 use tetray_integrate::{IntegratorOptions, Material, Method, Model, ScalarIntegrator, TfKnots};
 use tetray_mesh::Topology;
 use tetray_raycast::scenes::{add_field, box_grid, CellSplit, ScalarSpec};
-use tetray_raycast::{render_scalar, Camera, RenderOptions, Scene};
+use tetray_raycast::{render_scalar, RenderOptions, Scene};
 
 use crate::cells;
 use crate::output::{Csv, OutputDir};

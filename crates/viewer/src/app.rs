@@ -7,8 +7,9 @@ use std::time::{Duration, Instant};
 use anyhow::Context;
 use egui::{PointerButton, Rect, Sense};
 use glam::Vec3;
+use tetray_core::Camera;
 use tetray_integrate::{Method, OpacityMode, TransferFunction};
-use tetray_raycast::{Camera, Scene};
+use tetray_raycast::Scene;
 use tetray_shearwarp::{Classification, ClassifyOptions, ShearWarp};
 
 use crate::camera_ui;

@@ -4,7 +4,7 @@
 
 use egui::Vec2;
 use glam::Vec3;
-use tetray_raycast::{Camera, CameraError};
+use tetray_core::{Camera, CameraError};
 
 /// Degrees of orbit for a drag across the whole view (VTK: 20 degrees per
 /// window times its motion factor of 10).

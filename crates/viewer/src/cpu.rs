@@ -9,9 +9,10 @@ use std::sync::Arc;
 use std::thread::JoinHandle;
 use std::time::Duration;
 
-use tetray_gpu::GpuStats;
+use tetray_core::Image;
+use tetray_core::WalkCounters;
 use tetray_integrate::ScalarIntegrator;
-use tetray_raycast::{render_scalar_with_progress, Image, RenderOptions, Scene};
+use tetray_raycast::{render_scalar_with_progress, RenderOptions, Scene};
 use tetray_shearwarp::{Classification, ShearWarp, ShearWarpOptions};
 
 use crate::engine::{FrameKey, FrameReport};
@@ -157,7 +158,7 @@ fn raycast(
         threads: None,
     };
     let mut images = Vec::new();
-    let mut stats = [GpuStats::default(); 2];
+    let mut stats = [WalkCounters::default(); 2];
     let mut elapsed = Duration::ZERO;
     for (view, integrator) in integrators.iter().enumerate() {
         let base = view * height as usize;
@@ -171,17 +172,7 @@ fn raycast(
         )?;
         let s = out.stats;
         if let Some(slot) = stats.get_mut(view) {
-            *slot = GpuStats {
-                rays: s.rays,
-                rays_hit: s.rays_hit,
-                segments: s.segments,
-                steps: s.steps,
-                entries: s.entries,
-                steps_bound_hits: s.steps_bound_hits,
-                walk_failures: s.walk_failures,
-                gpu_time: None,
-                wall_time: s.elapsed,
-            };
+            *slot = s.counters;
         }
         elapsed += s.elapsed;
         images.push(out.image);
@@ -216,7 +207,7 @@ fn shear_warp(
         skip_empty: true,
     };
     let mut images = Vec::new();
-    let mut stats = [GpuStats::default(); 2];
+    let mut stats = [WalkCounters::default(); 2];
     let mut elapsed = Duration::ZERO;
     for (view, sw) in renderers.iter().enumerate() {
         let out = sw
@@ -224,13 +215,11 @@ fn shear_warp(
             .map_err(|e| anyhow::anyhow!("shear-warp: {e}"))?;
         rows_done.store((view + 1) * height as usize, Ordering::Relaxed);
         if let Some(slot) = stats.get_mut(view) {
-            *slot = GpuStats {
+            *slot = WalkCounters {
                 rays: u64::from(width) * u64::from(height),
                 rays_hit: out.image.rgba.iter().filter(|p| p[3] > 0.0).count() as u64,
                 segments: out.stats.slabs_composited,
-                gpu_time: None,
-                wall_time: out.stats.elapsed,
-                ..GpuStats::default()
+                ..WalkCounters::default()
             };
         }
         elapsed += out.stats.elapsed;

@@ -7,11 +7,13 @@
 use std::time::{Duration, Instant};
 
 use anyhow::Context;
+use tetray_core::WalkCounters;
+use tetray_core::{Camera, Image};
 use tetray_gpu::{
-    FrameJob, GpuContext, GpuIntegrator, GpuRaycaster, GpuRenderOptions, GpuScene, GpuStats,
+    walk_counters, FrameJob, GpuContext, GpuIntegrator, GpuRaycaster, GpuRenderOptions, GpuScene,
     GpuTarget,
 };
-use tetray_raycast::{Camera, Image, Scene};
+use tetray_raycast::Scene;
 
 use crate::gpu_io;
 use crate::pacing::Pacer;
@@ -82,7 +84,7 @@ pub struct FrameReport {
     pub elapsed: Duration,
     pub batches: u32,
     /// Counters of each view (B zero when not comparing).
-    pub stats: [GpuStats; 2],
+    pub stats: [WalkCounters; 2],
     pub renderer: &'static str,
 }
 
@@ -256,16 +258,11 @@ impl Progressive {
             self.batches += 1;
         }
         if !stats_reads.is_empty() {
-            let mut stats = [GpuStats::default(); 2];
+            let mut stats = [WalkCounters::default(); 2];
             for (slot, read) in stats.iter_mut().zip(&stats_reads) {
                 let bytes = gpu_io::map_read(&gpu.ctx, read)?;
                 let counters: Vec<u32> = bytemuck::pod_collect_to_vec(&bytes);
-                *slot = GpuStats::from_counters(
-                    &counters,
-                    u64::from(w) * u64::from(h),
-                    None,
-                    self.elapsed,
-                );
+                *slot = walk_counters(&counters, u64::from(w) * u64::from(h));
             }
             self.report = Some(FrameReport {
                 size: (w, h),

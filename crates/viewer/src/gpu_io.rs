@@ -1,9 +1,9 @@
 //! Blocking reads of small GPU buffers: a frame's counters when it is
 //! done, and images for screenshots. Never an image per display frame.
 
+use tetray_core::Image;
 use tetray_gpu::readback::{read_buffer, readback_buffer};
 use tetray_gpu::{GpuContext, GpuTarget};
-use tetray_raycast::Image;
 
 /// Waits for the queue, maps `buffer` and copies it out.
 pub fn map_read(ctx: &GpuContext, buffer: &wgpu::Buffer) -> anyhow::Result<Vec<u8>> {

@@ -8,7 +8,7 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use anyhow::Context;
-use tetray_gpu::{layout::method_code, GpuContext, GpuIntegrator};
+use tetray_gpu::{GpuContext, GpuIntegrator};
 use tetray_integrate::{
     IntegratorOptions, Method, OpacityMode, ScalarIntegrator, TransferFunction,
 };
@@ -59,9 +59,7 @@ impl RendererChoice {
     /// kernel's methods: every one but the f64 references).
     pub fn supports(self, method: Method) -> bool {
         match self {
-            RendererChoice::GpuRaycast | RendererChoice::Projection(_) => {
-                method_code(method).is_some()
-            }
+            RendererChoice::GpuRaycast | RendererChoice::Projection(_) => method.has_gpu_kernel(),
             RendererChoice::CpuReference => true,
             // Only the classification depends on the method.
             RendererChoice::ShearWarp => true,

@@ -165,10 +165,10 @@ fn camera(app: &mut ViewerApp, ui: &mut Ui) {
             .on_hover_text("fit the mesh, looking down -z")
             .clicked()
         {
-            app.camera = Some(tetray_raycast::Camera {
+            app.camera = Some(tetray_core::Camera {
                 parallel_scale: camera.parallel_scale,
                 view_angle: camera.view_angle,
-                ..tetray_raycast::Camera::default()
+                ..tetray_core::Camera::default()
             });
             app.reset_camera = true;
         }

@@ -6,12 +6,14 @@
 use std::time::{Duration, Instant};
 
 use anyhow::Context;
-use tetray_gpu::{GpuContext, GpuIntegrator, GpuStats};
+use tetray_core::Image;
+use tetray_core::WalkCounters;
+use tetray_gpu::{GpuContext, GpuIntegrator};
 use tetray_project::layout::knot_scalars;
 use tetray_project::{
     plan, GpuProjectScene, GpuProjector, ProjectScene, SortKind, TetIntervals, View,
 };
-use tetray_raycast::{Image, Scene};
+use tetray_raycast::Scene;
 
 use crate::engine::{FrameKey, FrameReport};
 
@@ -69,7 +71,7 @@ impl ProjectRenderer {
         let (width, height) = key.size;
         let view = View::new(&key.camera, width, height)?;
         let mut images = Vec::new();
-        let mut stats = [GpuStats::default(); 2];
+        let mut stats = [WalkCounters::default(); 2];
         for (k, integrator) in integrators.iter().enumerate() {
             let pieces = intervals.get(k).and_then(Option::as_ref);
             let plan = plan(&self.scene, pieces, &view, sort);
@@ -78,12 +80,10 @@ impl ProjectRenderer {
                 .draw(ctx, &self.gpu_scene, integrator, &view, &plan.draws)
                 .with_context(|| format!("projecting view {}", k + 1))?;
             if let Some(slot) = stats.get_mut(k) {
-                *slot = GpuStats {
+                *slot = WalkCounters {
                     rays: u64::from(width) * u64::from(height),
                     segments: draw.segments,
-                    gpu_time: draw.gpu_time,
-                    wall_time: draw.wall_time,
-                    ..GpuStats::default()
+                    ..WalkCounters::default()
                 };
             }
             images.push(image);

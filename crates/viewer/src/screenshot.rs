@@ -5,7 +5,7 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::bail;
-use tetray_raycast::Image;
+use tetray_core::Image;
 
 use crate::engine::{FrameKey, Look};
 use crate::present::{present_image, Display, PresentParams, Sources};

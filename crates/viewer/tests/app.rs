@@ -81,7 +81,7 @@ fn starts_on_the_default_dataset_and_matches_the_snapshot() {
     .expect("cpu render");
     let expected = image::RgbaImage::from_fn(w, h, |x, y| {
         let p = cpu.image.pixel(x, y).expect("pixel");
-        let rgb = tetray_raycast::image::composite_over(p, Vec3::ZERO);
+        let rgb = tetray_core::image::composite_over(p, Vec3::ZERO);
         let [r, g, b] = rgb.map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8);
         image::Rgba([r, g, b, 255])
     });

@@ -135,7 +135,7 @@ fn the_shear_warp_renderer_renders_image_data() {
         .expect("shear-warp");
     let expected = image::RgbaImage::from_fn(w, h, |x, y| {
         let p = out.image.pixel(x, y).expect("pixel");
-        let rgb = tetray_raycast::image::composite_over(p, Vec3::ZERO);
+        let rgb = tetray_core::image::composite_over(p, Vec3::ZERO);
         let [r, g, b] = rgb.map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8);
         image::Rgba([r, g, b, 255])
     });

@@ -6,7 +6,7 @@ pub mod rays;
 
 use std::collections::HashMap;
 
-use tetray_boundary_bvh::watertight::{cross_triangle, Crossing, RayFrame};
+use tetray_core::watertight::{cross_triangle, Crossing, RayFrame};
 use tetray_mesh::{BoundaryFace, TetMesh, Topology, FACE_VERTICES, NO_NEIGHBOR};
 
 /// Face adjacency by matching sorted vertex triples. Stands in for

@@ -1,7 +1,7 @@
 //! Query rays: random ones and ones exactly along grid lines and planes.
 
 use glam::Vec3;
-use tetray_boundary_bvh::watertight::RayFrame;
+use tetray_core::watertight::RayFrame;
 use tetray_mesh::TetMesh;
 
 use super::meshes::Grid;

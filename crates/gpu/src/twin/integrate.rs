@@ -3,9 +3,30 @@
 
 use glam::{Vec3, Vec4};
 
-use super::Inputs;
-use crate::layout::method_code;
 use tetray_integrate::Method;
+
+use crate::layout::IntegratorParams;
+use crate::upload::IntegratorData;
+
+/// What integrate.wgsl reads: the integrator's parameter block, its tables
+/// and the Psi table (the ray caster and the projection bind the same).
+#[derive(Debug, Clone, Copy)]
+pub struct IntegratorInputs<'a> {
+    pub params: &'a IntegratorParams,
+    pub tables: &'a [[f32; 4]],
+    pub psi: &'a [f32],
+}
+
+impl<'a> IntegratorInputs<'a> {
+    /// `params` (the block a frame uploads) with `data`'s tables.
+    pub fn new(params: &'a IntegratorParams, data: &'a IntegratorData) -> Self {
+        IntegratorInputs {
+            params,
+            tables: &data.tables,
+            psi: &data.psi,
+        }
+    }
+}
 
 const SQRT_PI_2: f32 = 0.886_226_9;
 const ALPHA_MAX: f32 = 0.999_999;
@@ -36,11 +57,11 @@ fn then(front: Light, behind: Light) -> Light {
     }
 }
 
-fn table(input: &Inputs, i: u32) -> Vec4 {
+fn table(input: &IntegratorInputs, i: u32) -> Vec4 {
     Vec4::from_array(input.tables[i as usize])
 }
 
-pub fn in_interval(input: &Inputs, k: i32, s: f32) -> Sample {
+pub fn in_interval(input: &IntegratorInputs, k: i32, s: f32) -> Sample {
     let base = 4 * (k + 1).clamp(0, input.params.knot_count as i32) as u32;
     let head = table(input, base);
     let slope = table(input, base + 1);
@@ -53,11 +74,11 @@ pub fn in_interval(input: &Inputs, k: i32, s: f32) -> Sample {
     }
 }
 
-fn knot_scalar(input: &Inputs, k: u32) -> f32 {
+fn knot_scalar(input: &IntegratorInputs, k: u32) -> f32 {
     input.tables[4 * (k as usize + 1)][3]
 }
 
-fn interval_up(input: &Inputs, s: f32) -> i32 {
+fn interval_up(input: &IntegratorInputs, s: f32) -> i32 {
     let (mut lo, mut hi) = (0u32, input.params.knot_count);
     let mut i = 0;
     while i < 32 && lo < hi {
@@ -72,11 +93,11 @@ fn interval_up(input: &Inputs, s: f32) -> i32 {
     lo as i32 - 1
 }
 
-pub fn sample_at(input: &Inputs, s: f32) -> Sample {
+pub fn sample_at(input: &IntegratorInputs, s: f32) -> Sample {
     in_interval(input, interval_up(input, s), s)
 }
 
-pub fn sample_near(input: &Inputs, s: f32, near: &Sample) -> Sample {
+pub fn sample_near(input: &IntegratorInputs, s: f32, near: &Sample) -> Sample {
     let k = near.interval;
     let last = input.params.knot_count as i32 - 1;
     let above_start = k < 0 || knot_scalar(input, k as u32) <= s;
@@ -88,7 +109,7 @@ pub fn sample_near(input: &Inputs, s: f32, near: &Sample) -> Sample {
     }
 }
 
-fn psi_lookup(input: &Inputs, a: f32, b: f32) -> f32 {
+fn psi_lookup(input: &IntegratorInputs, a: f32, b: f32) -> f32 {
     let n = input.params.psi_size;
     let last = (n - 1) as f32;
     let x = (1.0 - 1.0 / (1.0 + a).sqrt()).clamp(0.0, 1.0) * last;
@@ -102,7 +123,7 @@ fn psi_lookup(input: &Inputs, a: f32, b: f32) -> f32 {
     bottom + (top - bottom) * fy
 }
 
-fn ppi_weights(input: &Inputs, a: f32, b: f32) -> (f32, f32) {
+fn ppi_weights(input: &IntegratorInputs, a: f32, b: f32) -> (f32, f32) {
     let zeta = (-0.5 * (a + b)).exp();
     (zeta, psi_lookup(input, a, b).clamp(zeta, 1.0))
 }
@@ -247,10 +268,10 @@ fn exact_weights(a: f32, b: f32) -> (f32, f32) {
 }
 
 fn code(method: Method) -> u32 {
-    method_code(method).expect("a GPU method")
+    method.gpu_code().expect("a GPU method")
 }
 
-fn channel_weights(input: &Inputs, q_back: f32, q_front: f32, d: f32) -> (f32, f32) {
+fn channel_weights(input: &IntegratorInputs, q_back: f32, q_front: f32, d: f32) -> (f32, f32) {
     let method = input.params.method;
     if method == code(Method::Ppi) {
         ppi_weights(input, q_back * d, q_front * d)
@@ -263,7 +284,7 @@ fn channel_weights(input: &Inputs, q_back: f32, q_front: f32, d: f32) -> (f32, f
     }
 }
 
-fn piece_light(input: &Inputs, front: &Sample, back: &Sample, d: f32) -> Light {
+fn piece_light(input: &IntegratorInputs, front: &Sample, back: &Sample, d: f32) -> Light {
     let (zeta, psi) = if input.params.grey == 1 {
         let (z, p) = channel_weights(input, back.q.x, front.q.x, d);
         (Vec3::splat(z), Vec3::splat(p))
@@ -283,7 +304,7 @@ fn piece_light(input: &Inputs, front: &Sample, back: &Sample, d: f32) -> Light {
     }
 }
 
-fn split_light(input: &Inputs, front: &Sample, back: &Sample, length: f32) -> Light {
+fn split_light(input: &IntegratorInputs, front: &Sample, back: &Sample, length: f32) -> Light {
     if front.interval == back.interval || input.params.split == 0 {
         return piece_light(input, front, back, length);
     }
@@ -343,7 +364,7 @@ fn split_light(input: &Inputs, front: &Sample, back: &Sample, length: f32) -> Li
     light
 }
 
-fn riemann_light(input: &Inputs, s_front: f32, s_back: f32, length: f32) -> Light {
+fn riemann_light(input: &IntegratorInputs, s_front: f32, s_back: f32, length: f32) -> Light {
     let steps = (length / input.params.riemann_step)
         .ceil()
         .clamp(1.0, 65536.0) as u32;
@@ -364,7 +385,7 @@ fn riemann_light(input: &Inputs, s_front: f32, s_back: f32, length: f32) -> Ligh
     light
 }
 
-fn preintegrated_light(input: &Inputs, s_front: f32, s_back: f32, length: f32) -> Light {
+fn preintegrated_light(input: &IntegratorInputs, s_front: f32, s_back: f32, length: f32) -> Light {
     let p = input.params;
     let n = p.preint_size;
     let last = (n - 1) as f32;
@@ -404,7 +425,12 @@ fn preintegrated_light(input: &Inputs, s_front: f32, s_back: f32, length: f32) -
     out
 }
 
-pub fn segment_light(input: &Inputs, front: &Sample, back: &Sample, length: f32) -> Light {
+pub fn segment_light(
+    input: &IntegratorInputs,
+    front: &Sample,
+    back: &Sample,
+    length: f32,
+) -> Light {
     if length.is_nan() || length <= 0.0 {
         return CLEAR;
     }

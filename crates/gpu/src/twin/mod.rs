@@ -10,14 +10,14 @@ pub mod predicate;
 
 use glam::{Vec3, Vec4};
 use rayon::prelude::*;
-use tetray_raycast::{Camera, Image};
+use tetray_core::{Camera, Image};
 
 use crate::layout::{Params, STAT_COUNT};
 use crate::render::{frame_params, GpuRenderOptions};
 use crate::upload::{IntegratorData, SceneData};
 use crate::GpuError;
 use bvh::{face_entry, first_entry, Skip, SKIP_MAX};
-use integrate::{sample_at, sample_near, segment_light};
+use integrate::{sample_at, sample_near, segment_light, IntegratorInputs};
 use predicate::{crossing, crossing_from, edge_sign_of, edge_value, make_ray, project, Ray};
 
 pub use integrate::{dawson, erfcx};
@@ -28,8 +28,7 @@ pub struct Inputs<'a> {
     pub points: &'a [[f32; 4]],
     pub tets: &'a [[u32; 4]],
     pub bvh: &'a [[u32; 4]],
-    pub tables: &'a [[f32; 4]],
-    pub psi: &'a [f32],
+    pub integrator: IntegratorInputs<'a>,
 }
 
 impl Inputs<'_> {
@@ -62,8 +61,7 @@ pub fn render_traffic(
         points: &scene.points,
         tets: &scene.tets,
         bvh: &scene.bvh,
-        tables: &integrator.tables,
-        psi: &integrator.psi,
+        integrator: IntegratorInputs::new(&params.integrator, integrator),
     };
     let width = opts.width as usize;
     let mut rgba = vec![[0.0f32; 4]; width * opts.height as usize];
@@ -107,8 +105,7 @@ pub fn trace_pixel(
         points: &scene.points,
         tets: &scene.tets,
         bvh: &scene.bvh,
-        tables: &integrator.tables,
-        psi: &integrator.psi,
+        integrator: IntegratorInputs::new(&params.integrator, integrator),
     };
     let (color, counters) = cast_ray(&input, x, y);
     Ok((color.to_array(), counters.as_stats()))
@@ -300,12 +297,13 @@ impl Counters {
 
 fn cast_ray(input: &Inputs, px: u32, py: u32) -> (Vec4, Counters) {
     let p = input.params;
-    let x = (px as f32 + 0.5 - p.half_width) * p.pixel;
-    let y = (p.half_height - (py as f32 + 0.5)) * p.pixel;
-    let (right, up) = (Vec3::from_array(p.right), Vec3::from_array(p.up));
-    let (position, direction) = (Vec3::from_array(p.position), Vec3::from_array(p.direction));
+    let v = &p.view;
+    let x = (px as f32 + 0.5 - v.half_width) * v.pixel;
+    let y = (v.half_height - (py as f32 + 0.5)) * v.pixel;
+    let (right, up) = (Vec3::from_array(v.right), Vec3::from_array(v.up));
+    let (position, direction) = (Vec3::from_array(v.position), Vec3::from_array(v.direction));
     let offset = right * x + up * y;
-    let (ray, inside) = if p.orthographic == 1 {
+    let (ray, inside) = if v.orthographic == 1 {
         let ray = make_ray(position + offset, direction);
         let (lo, hi) = (
             Vec3::from_array(p.bounds_min),
@@ -352,7 +350,7 @@ fn cast_ray(input: &Inputs, px: u32, py: u32) -> (Vec4, Counters) {
         let mut cell = load_cell(input, &ray, tet, &mut counters.traffic);
         let mut t_in = entry.t.max(t_cursor);
         let mut s_in = face_scalar(&cell, f_in);
-        let mut sample_in = sample_at(input, s_in);
+        let mut sample_in = sample_at(&input.integrator, s_in);
         loop {
             counters.steps += 1;
             if counters.steps > u64::from(p.max_steps) {
@@ -366,16 +364,24 @@ fn cast_ray(input: &Inputs, px: u32, py: u32) -> (Vec4, Counters) {
                 break;
             };
             let t_out = t_exit.max(t_in);
-            let sample_out = sample_near(input, s_out, &sample_in);
+            let sample_out = sample_near(&input.integrator, s_out, &sample_in);
             if t_out > t_in {
                 skip.len = 0;
                 if t_out > 0.0 {
                     let front = if t_in < 0.0 {
-                        sample_at(input, s_in + (s_out - s_in) * (-t_in / (t_out - t_in)))
+                        sample_at(
+                            &input.integrator,
+                            s_in + (s_out - s_in) * (-t_in / (t_out - t_in)),
+                        )
                     } else {
                         sample_in
                     };
-                    let light = segment_light(input, &front, &sample_out, t_out - t_in.max(0.0));
+                    let light = segment_light(
+                        &input.integrator,
+                        &front,
+                        &sample_out,
+                        t_out - t_in.max(0.0),
+                    );
                     color += trans * light.emitted;
                     trans *= light.transmittance;
                     counters.segments += 1;

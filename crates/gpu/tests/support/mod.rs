@@ -8,13 +8,14 @@ use std::path::PathBuf;
 use std::sync::OnceLock;
 
 use tetray_boundary_bvh::BuildPreset;
+use tetray_core::{Camera, Image};
 use tetray_gpu::{
     GpuContext, GpuIntegrator, GpuRaycaster, GpuRenderOptions, GpuScene, GpuStats, IntegratorData,
     SceneData,
 };
 use tetray_integrate::ScalarIntegrator;
 use tetray_mesh::{TetMesh, Topology};
-use tetray_raycast::{render_scalar, Camera, Image, RenderOptions, RenderStats, Scene};
+use tetray_raycast::{render_scalar, RenderOptions, RenderStats, Scene};
 
 /// The adapter and compiled kernel, shared by a test binary. `None` (with a
 /// loud message) when there is no adapter, unless `TETRAY_REQUIRE_GPU=1`

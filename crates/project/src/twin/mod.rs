@@ -12,8 +12,9 @@ mod raster;
 mod stages;
 
 use rayon::prelude::*;
+use tetray_core::Image;
+use tetray_gpu::twin::integrate::IntegratorInputs;
 use tetray_gpu::IntegratorData;
-use tetray_raycast::Image;
 
 use crate::layout::Params;
 use crate::scene::{ProjectScene, FACE_VERTS};
@@ -36,15 +37,7 @@ pub fn render(
         return Err(ProjectError::ColouredAttenuation);
     }
     let params = Params::new(view, integrator);
-    let twin_params = params.integrator_twin();
-    let inputs = tetray_gpu::twin::Inputs {
-        params: &twin_params,
-        points: &[],
-        tets: &[],
-        bvh: &[],
-        tables: &integrator.tables,
-        psi: &integrator.psi,
-    };
+    let inputs = IntegratorInputs::new(&params.integrator, integrator);
     let screen = Screen::new(view);
     // The vertex stage once per draw.
     let corners: Vec<[Corner; 4]> = draws

@@ -2,8 +2,8 @@
 //! f32 operations in the same order.
 
 use glam::{Vec2, Vec3, Vec4};
+use tetray_gpu::twin::integrate::IntegratorInputs;
 use tetray_gpu::twin::integrate::{in_interval, sample_at, segment_light, Light};
-use tetray_gpu::twin::Inputs;
 
 use crate::draws::NO_CLIP;
 use crate::layout::Params;
@@ -55,12 +55,16 @@ pub fn vertex(params: &Params, q: &[Vec4; 4], corner: usize, clip_code: u32) -> 
         c = q[2];
     }
     let p = me.truncate();
-    let rel = p - v3(params.position);
-    let z = rel.dot(v3(params.direction));
-    let sx = rel.dot(v3(params.right)) / (params.pixel * params.half_width);
-    let sy = rel.dot(v3(params.up)) / (params.pixel * params.half_height);
-    let ortho = params.orthographic == 1;
-    let ray = if ortho { v3(params.direction) } else { rel };
+    let rel = p - v3(params.view.position);
+    let z = rel.dot(v3(params.view.direction));
+    let sx = rel.dot(v3(params.view.right)) / (params.view.pixel * params.view.half_width);
+    let sy = rel.dot(v3(params.view.up)) / (params.view.pixel * params.view.half_height);
+    let ortho = params.view.orthographic == 1;
+    let ray = if ortho {
+        v3(params.view.direction)
+    } else {
+        rel
+    };
     let (ea, eb, ec) = (a.truncate() - p, b.truncate() - p, c.truncate() - p);
     let (cx, cy, cz) = (eb.cross(ec), ec.cross(ea), ea.cross(eb));
     let det = ea.dot(cx);
@@ -81,7 +85,8 @@ pub fn vertex(params: &Params, q: &[Vec4; 4], corner: usize, clip_code: u32) -> 
             Vec2::new(ratio(nr, den), ratio(me.w * nr + sr, den)),
         )
     };
-    let depths = q.map(|v| (v.truncate() - v3(params.position)).dot(v3(params.direction)));
+    let depths =
+        q.map(|v| (v.truncate() - v3(params.view.position)).dot(v3(params.view.direction)));
     let scalars = q.map(|v| v.w);
     let bounds = Vec4::new(
         depths[0].min(depths[1]).min(depths[2].min(depths[3])),
@@ -134,9 +139,9 @@ impl Fragment {
 
 /// The fragment stage: the light of the pixel's segment through the piece,
 /// or `None` where the fragment is discarded.
-pub fn fragment(params: &Params, inputs: &Inputs, f: &Fragment) -> Option<Light> {
+pub fn fragment(params: &Params, inputs: &IntegratorInputs, f: &Fragment) -> Option<Light> {
     let (mut z_in, mut s_in, mut z_out, mut s_out, scale);
-    if params.orthographic == 1 {
+    if params.view.orthographic == 1 {
         let mut best = BIG;
         let mut best_s = 0.0;
         for j in 0..4 {
@@ -164,9 +169,9 @@ pub fn fragment(params: &Params, inputs: &Inputs, f: &Fragment) -> Option<Light>
         if best.is_nan() || best <= 0.0 {
             return None;
         }
-        let x = (f.x - params.half_width) * params.pixel;
-        let y = (params.half_height - f.y) * params.pixel;
-        let ray = v3(params.direction) + v3(params.right) * x + v3(params.up) * y;
+        let x = (f.x - params.view.half_width) * params.view.pixel;
+        let y = (params.view.half_height - f.y) * params.view.pixel;
+        let ray = v3(params.view.direction) + v3(params.view.right) * x + v3(params.view.up) * y;
         (z_in, s_in, z_out, s_out, scale) = (
             1.0 / a_in,
             f.entry.y / a_in,
@@ -206,7 +211,7 @@ pub fn fragment(params: &Params, inputs: &Inputs, f: &Fragment) -> Option<Light>
                 (t_back, s_back) = (t, lo);
             }
         }
-        if k + 1 < params.knot_count as i32 {
+        if k + 1 < params.integrator.knot_count as i32 {
             let hi = knot(k + 1);
             let t = (hi - s_in) / span;
             if span > 0.0 && t < t_back {

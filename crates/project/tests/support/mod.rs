@@ -10,6 +10,7 @@ use std::sync::OnceLock;
 
 use glam::Vec3;
 use tetray_boundary_bvh::BuildPreset;
+use tetray_core::{Camera, Image};
 use tetray_gpu::{GpuContext, GpuIntegrator, IntegratorData};
 use tetray_integrate::{
     ColorPoint, IntegratorOptions, Method, OpacityMode, OpacityPoint, ScalarIntegrator,
@@ -21,7 +22,7 @@ use tetray_project::{
     ProjectScene, SortKind, TetIntervals, View,
 };
 use tetray_raycast::scenes::{jittered_box, CellSplit};
-use tetray_raycast::{render_scalar, Camera, Image, RenderOptions, Scene};
+use tetray_raycast::{render_scalar, RenderOptions, Scene};
 
 /// The adapter, shared by a test binary. `None` (with a loud message) when
 /// there is none, unless `TETRAY_REQUIRE_GPU=1` (CI), where that fails.

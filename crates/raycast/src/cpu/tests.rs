@@ -94,7 +94,7 @@ fn prefetching_walk_gives_the_same_bits() {
             images.push((pixels, stats));
         }
         let (a, sa) = &images[0];
-        assert!(sa.segments > 1000 && sa.entries > sa.rays_hit);
+        assert!(sa.counters.segments > 1000 && sa.counters.entries > sa.counters.rays_hit);
         for (b, sb) in &images[1..] {
             assert!(a
                 .iter()
@@ -102,8 +102,8 @@ fn prefetching_walk_gives_the_same_bits() {
                 .map(|v| v.to_bits())
                 .eq(b.iter().flatten().map(|v| v.to_bits())));
             assert_eq!(
-                (sa.segments, sa.steps, sa.entries),
-                (sb.segments, sb.steps, sb.entries)
+                (sa.counters.segments, sa.counters.steps, sa.counters.entries),
+                (sb.counters.segments, sb.counters.steps, sb.counters.entries)
             );
         }
     }

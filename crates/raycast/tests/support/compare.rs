@@ -5,8 +5,8 @@
 use std::path::{Path, PathBuf};
 
 use glam::Vec3;
-use tetray_boundary_bvh::watertight::RayFrame;
-use tetray_raycast::{Camera, Image};
+use tetray_core::watertight::RayFrame;
+use tetray_core::{Camera, Image};
 
 /// RGBA per pixel, row 0 at the top: premultiplied colour and
 /// `alpha = 1 - mean(T)`, as the renderer stores them.

@@ -8,8 +8,8 @@ pub mod compare;
 pub mod optics;
 
 use glam::{DVec3, Vec3};
-use tetray_boundary_bvh::watertight::RayFrame;
 use tetray_boundary_bvh::BuildPreset;
+use tetray_core::watertight::RayFrame;
 use tetray_mesh::{TetMesh, Topology};
 use tetray_raycast::{Scene, SegmentIntegrator};
 

@@ -6,7 +6,7 @@
 use std::ops::{Add, Mul, Sub};
 
 use glam::{DVec3, Vec3};
-use tetray_boundary_bvh::watertight::RayFrame;
+use tetray_core::watertight::RayFrame;
 use tetray_integrate::{reference, ColorPoint, OpacityPoint, TransferFunction};
 use tetray_raycast::scenes::ScalarSpec;
 

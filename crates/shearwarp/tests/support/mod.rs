@@ -6,11 +6,12 @@
 
 use glam::{DVec3, Vec3};
 use tetray_boundary_bvh::BuildPreset;
+use tetray_core::{Camera, Image};
 use tetray_integrate::{
     ColorPoint, IntegratorOptions, Method, OpacityMode, OpacityPoint, ScalarIntegrator,
     TransferFunction,
 };
-use tetray_raycast::{render_scalar, Camera, Image, RenderOptions, Scene};
+use tetray_raycast::{render_scalar, RenderOptions, Scene};
 use tetray_shearwarp::RegularGrid;
 
 /// The VTK view after ResetCamera, turned by azimuth and elevation.

@@ -16,9 +16,9 @@ mod timing;
 use std::path::PathBuf;
 
 use serde::Serialize;
+use tetray_core::Camera;
 use tetray_gpu::{GpuIntegrator, GpuScene};
 use tetray_integrate::Method;
-use tetray_raycast::Camera;
 
 pub use setup::{cells_for, generated_box, load_dataset, Dataset, Prepared, DATASETS};
 pub use timing::{time_cpu, time_projection, GpuRig, Timing};
@@ -228,11 +228,7 @@ pub fn run(
             "speed: needs at least one frame, one method and a non-empty image".into(),
         ));
     }
-    if let Some(m) = options
-        .methods
-        .iter()
-        .find(|m| tetray_gpu::layout::method_code(**m).is_none())
-    {
+    if let Some(m) = options.methods.iter().find(|m| !m.has_gpu_kernel()) {
         return Err(StudyError::Option(format!(
             "speed: {m} is an f64 reference with no GPU kernel; time the renderers' methods"
         )));

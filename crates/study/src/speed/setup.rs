@@ -8,11 +8,12 @@ use std::time::Instant;
 
 use glam::Vec3;
 use tetray_boundary_bvh::BuildPreset;
+use tetray_core::Camera;
 use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunction};
 use tetray_io::LoadOptions;
 use tetray_mesh::{mean_tet_chord, ScalarField, TetMesh, Topology};
 use tetray_raycast::scenes::{box_grid, CellSplit};
-use tetray_raycast::{Camera, Scene};
+use tetray_raycast::Scene;
 
 use crate::StudyError;
 

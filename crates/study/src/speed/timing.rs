@@ -2,9 +2,10 @@
 //! orbiting the camera once about its view-up (as the dissertation
 //! averages over a rotation), averaged.
 
+use tetray_core::Camera;
 use tetray_gpu::{GpuContext, GpuIntegrator, GpuRaycaster, GpuRenderOptions, GpuScene};
 use tetray_integrate::ScalarIntegrator;
-use tetray_raycast::{render_scalar, Camera, RenderOptions};
+use tetray_raycast::{render_scalar, RenderOptions};
 
 use crate::StudyError;
 
@@ -74,8 +75,8 @@ pub fn time_cpu(
         let out = render_scalar(scene, camera, integrator, &options)?;
         Ok(Frame {
             seconds: out.stats.elapsed.as_secs_f64(),
-            segments: out.stats.segments,
-            rays_hit: out.stats.rays_hit,
+            segments: out.stats.counters.segments,
+            rays_hit: out.stats.counters.rays_hit,
         })
     })?;
     Ok(Timing {
@@ -125,8 +126,8 @@ impl GpuRig {
                 .render(&self.ctx, scene, integrator, camera, &options)?;
             Ok(Frame {
                 seconds: out.stats.wall_time.as_secs_f64(),
-                segments: out.stats.segments,
-                rays_hit: out.stats.rays_hit,
+                segments: out.stats.counters.segments,
+                rays_hit: out.stats.counters.rays_hit,
             })
         })?;
         Ok(Timing {

@@ -6,8 +6,8 @@
 //!   the view height equal to it, in world units;
 //! - image row 0 is the top row; pixel `(px, py)` is sampled at its centre.
 
+use crate::watertight::RayFrame;
 use glam::{DVec3, Vec3};
-use tetray_boundary_bvh::watertight::RayFrame;
 
 /// Why a camera cannot produce rays.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

@@ -1,4 +1,7 @@
-//! The ray-integration methods, by name.
+//! The ray-integration methods, by name, and which renderers run each: the
+//! one table the CPU ray caster, the GPU kernels (their `METHOD_*`
+//! constants are generated from it, see [`wgsl_constants`]), the cell
+//! projection and shear-warp consult.
 
 use std::fmt;
 use std::str::FromStr;
@@ -101,6 +104,62 @@ impl Method {
     pub fn names() -> String {
         Method::ALL.map(Method::name).join(", ")
     }
+
+    /// The GPU kernels' code of this method (WGSL `METHOD_*`, shared by the
+    /// ray-casting kernel and the cell projection), or `None` for the f64
+    /// references, which run on the CPU only.
+    pub fn gpu_code(self) -> Option<u32> {
+        GPU_METHODS
+            .iter()
+            .position(|&(m, _)| m == self)
+            .map(|code| code as u32)
+    }
+
+    /// Whether the GPU ray caster and the cell projection can integrate
+    /// with this method.
+    pub fn has_gpu_kernel(self) -> bool {
+        self.gpu_code().is_some()
+    }
+
+    /// The method a GPU renderer shows in place of this one: itself, or for
+    /// an f64 reference the closed form of the same optical model (the
+    /// viewer's previews of a CPU reference frame).
+    pub fn gpu_stand_in(self) -> Method {
+        match self {
+            Method::Reference => Method::Exact,
+            Method::ReferenceOpacity => Method::LinOpacity,
+            other => other,
+        }
+    }
+
+    /// The methods the GPU renderers run, by name.
+    pub fn gpu_names() -> String {
+        GPU_METHODS.map(|(m, _)| m.name()).join(", ")
+    }
+}
+
+/// The methods with a GPU kernel, in the order of their codes, with the
+/// name of their WGSL constant.
+const GPU_METHODS: [(Method, &str); 8] = [
+    (Method::Ppi, "METHOD_PPI"),
+    (Method::Exact, "METHOD_EXACT"),
+    (Method::Average, "METHOD_AVERAGE"),
+    (Method::AverageOpacity, "METHOD_AVERAGE_OPACITY"),
+    (Method::LinAvgOpacity, "METHOD_LIN_AVG_OPACITY"),
+    (Method::LinOpacity, "METHOD_LIN_OPACITY"),
+    (Method::Preintegrated, "METHOD_PREINTEGRATED"),
+    (Method::Riemann, "METHOD_RIEMANN"),
+];
+
+/// The WGSL declarations of the method codes (`const METHOD_PPI: u32 =
+/// 0u;` ...), put in front of every kernel that integrates, so the shaders
+/// and [`Method::gpu_code`] cannot disagree.
+pub fn wgsl_constants() -> String {
+    GPU_METHODS
+        .iter()
+        .enumerate()
+        .map(|(code, (method, name))| format!("// {method}\nconst {name}: u32 = {code}u;\n"))
+        .collect()
 }
 
 impl fmt::Display for Method {
@@ -135,5 +194,32 @@ impl FromStr for Method {
                 name: text.to_string(),
                 expected: Method::names(),
             })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_method_but_the_references_has_a_distinct_gpu_code() {
+        let codes: Vec<Option<u32>> = Method::ALL.iter().map(|m| m.gpu_code()).collect();
+        for (method, code) in Method::ALL.iter().zip(&codes) {
+            let reference = matches!(method, Method::Reference | Method::ReferenceOpacity);
+            assert_eq!(code.is_none(), reference, "{method}");
+            assert!(method.gpu_stand_in().has_gpu_kernel(), "{method}");
+            assert_eq!(method.gpu_stand_in().model(), method.model(), "{method}");
+        }
+        let mut known: Vec<u32> = codes.into_iter().flatten().collect();
+        known.sort_unstable();
+        assert_eq!(known, (0..8).collect::<Vec<_>>());
+    }
+
+    #[test]
+    fn the_wgsl_constants_carry_the_codes() {
+        let wgsl = wgsl_constants();
+        assert!(wgsl.contains("const METHOD_PPI: u32 = 0u;"), "{wgsl}");
+        assert!(wgsl.contains("const METHOD_RIEMANN: u32 = 7u;"), "{wgsl}");
+        assert_eq!(wgsl.matches("const ").count(), 8);
     }
 }
