@@ -9,9 +9,9 @@ use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Through
 use glam::Vec3;
 use tetray_boundary_bvh::{BoundaryBvh, BuildPreset};
 use tetray_core::watertight::RayFrame;
+use tetray_mesh::synthetic::{box_grid, CellSplit};
 use tetray_mesh::Topology;
-use tetray_raycast::scenes::{box_grid, CellSplit};
-use tetray_raycast::{CellOrder, Scene};
+use tetray_scene::{CellOrder, Scene};
 
 mod support;
 

@@ -20,8 +20,8 @@ use std::process::Command;
 
 use glam::Vec3;
 use support::{run, scratch, text, BIN};
+use tetray_mesh::synthetic::{box_grid, hollow_box, CellSplit};
 use tetray_mesh::TetMesh;
-use tetray_raycast::scenes::{box_grid, hollow_box, CellSplit};
 
 /// The bound on the difference per pixel channel.
 const TOLERANCE: f32 = 1e-5;

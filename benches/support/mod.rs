@@ -7,7 +7,7 @@ use tetray_boundary_bvh::BuildPreset;
 use tetray_core::Camera;
 use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunction};
 use tetray_mesh::LoadedMesh;
-use tetray_raycast::Scene;
+use tetray_scene::Scene;
 
 const XYZ: &[u8] = include_bytes!("../../data/plot3d/bluntfinxyz.bin");
 const Q: &[u8] = include_bytes!("../../data/plot3d/bluntfinq.bin");

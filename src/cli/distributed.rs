@@ -27,7 +27,8 @@ use tetray_distributed::{
 };
 use tetray_io::vtk::{parallel_piece_count, read_piece_subset};
 use tetray_mesh::{centring_origin, LoadedMesh, ScalarField, TetMesh, Topology};
-use tetray_raycast::{RenderOptions, Scene};
+use tetray_raycast::RenderOptions;
+use tetray_scene::Scene;
 
 use super::args::{CameraArgs, IntegratorArgs, MeshArgs, RendererArg, WalkArgs};
 use super::scene;

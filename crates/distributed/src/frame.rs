@@ -8,7 +8,8 @@ use mpi::traits::*;
 use tetray_core::{Camera, Image};
 use tetray_integrate::ScalarIntegrator;
 use tetray_mesh::TetMesh;
-use tetray_raycast::{render_scalar_fragments, RenderOptions, Scene};
+use tetray_raycast::{render_scalar_fragments, RenderOptions};
+use tetray_scene::Scene;
 
 use crate::layout::TileLayout;
 use crate::report::{FrameReport, Row};

@@ -9,7 +9,8 @@ use tetray_core::Camera;
 use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunction};
 use tetray_mesh::cells::{assemble_at, CellGrid, ReadOptions};
 use tetray_mesh::{centring_origin, finish, prepare, LoadedMesh, MeshRead, ScalarField, TetMesh};
-use tetray_raycast::{RenderOptions, Scene};
+use tetray_raycast::RenderOptions;
+use tetray_scene::Scene;
 
 use crate::frame::{agree, render_distributed, DistributedFrame};
 use crate::layout::DEFAULT_TILE;

@@ -57,7 +57,7 @@ pub enum DistributedError {
     #[error(transparent)]
     Image(#[from] tetray_core::ImageError),
     #[error(transparent)]
-    Scene(#[from] tetray_raycast::SceneError),
+    Scene(#[from] tetray_scene::SceneError),
     #[error(transparent)]
     Camera(#[from] tetray_core::CameraError),
     #[error(transparent)]

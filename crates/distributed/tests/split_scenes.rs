@@ -10,9 +10,10 @@ use tetray_boundary_bvh::BuildPreset;
 use tetray_core::Camera;
 use tetray_distributed::{assemble, bucket_by_owner, composite_owned, spatial_split, TileLayout};
 use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunction};
+use tetray_mesh::synthetic::{add_field, hollow_box, CellSplit, ScalarSpec};
 use tetray_mesh::{TetMesh, Topology};
-use tetray_raycast::scenes::{add_field, hollow_box, CellSplit, ScalarSpec};
-use tetray_raycast::{render_scalar, render_scalar_fragments, RenderOptions, Scene};
+use tetray_raycast::{render_scalar, render_scalar_fragments, RenderOptions};
+use tetray_scene::Scene;
 
 fn scene(mesh: TetMesh) -> Scene {
     let topology = Topology::build(&mesh).unwrap();

@@ -12,7 +12,7 @@ use tetray_integrate::{
     TransferFunction,
 };
 use tetray_mesh::{default_field, mean_tet_chord, value_range, ScalarField};
-use tetray_raycast::Scene;
+use tetray_scene::Scene;
 
 use crate::error::{bail, Context, FrameError};
 use crate::mesh::MeshInput;

@@ -8,7 +8,8 @@ use tetray_core::Camera;
 use tetray_gpu::{GpuContext, GpuIntegrator, GpuRaycaster, GpuRenderOptions, GpuScene};
 use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunction};
 use tetray_io::{load, LoadOptions};
-use tetray_raycast::{render_scalar, RenderOptions, Scene};
+use tetray_raycast::{render_scalar, RenderOptions};
+use tetray_scene::Scene;
 
 fn main() -> anyhow::Result<()> {
     let args: Vec<String> = std::env::args().collect();

@@ -9,7 +9,7 @@
 use bytemuck::Pod;
 use glam::Vec3;
 use tetray_integrate::{GammaSpacing, Method, Model, ScalarIntegrator};
-use tetray_raycast::Scene;
+use tetray_scene::Scene;
 use wgpu::util::DeviceExt;
 
 use crate::layout::{IntegratorParams, INTERVAL_ENTRIES, PREINT_ENTRIES};

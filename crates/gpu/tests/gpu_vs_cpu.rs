@@ -28,10 +28,10 @@ use tetray_integrate::{
     ColorPoint, IntegratorOptions, Method, OpacityMode, OpacityPoint, ScalarIntegrator,
     TransferFunction,
 };
-use tetray_raycast::scenes::{
+use tetray_mesh::synthetic::{
     add_field, box_grid, hollow_box, jittered_box, two_boxes, CellSplit, ScalarSpec,
 };
-use tetray_raycast::Scene;
+use tetray_scene::Scene;
 
 /// Every method the GPU kernel has.
 const GPU_METHODS: [Method; 8] = [

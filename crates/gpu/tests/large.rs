@@ -9,10 +9,10 @@ use support::{assert_close, gpu, scene};
 use tetray_core::Camera;
 use tetray_gpu::{GpuError, GpuIntegrator, GpuRenderOptions, GpuScene, SceneData, TILE};
 use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunction};
-use tetray_raycast::scenes::{add_field, jittered_box, CellSplit, ScalarSpec};
+use tetray_mesh::synthetic::{add_field, jittered_box, CellSplit, ScalarSpec};
 use tetray_raycast::{render_scalar, RenderOptions};
 
-fn setup() -> (tetray_raycast::Scene, ScalarIntegrator, Camera) {
+fn setup() -> (tetray_scene::Scene, ScalarIntegrator, Camera) {
     let (lo, hi) = (Vec3::ZERO, Vec3::new(2.0, 1.0, 1.0));
     let mut mesh = jittered_box(lo, hi, [8, 4, 4], 0.2, 11, CellSplit::Five).expect("mesh");
     add_field(

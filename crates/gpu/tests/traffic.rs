@@ -9,7 +9,7 @@ use tetray_core::Camera;
 use tetray_gpu::twin::{render, render_traffic};
 use tetray_gpu::{GpuRenderOptions, IntegratorData, SceneData};
 use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunction};
-use tetray_raycast::Scene;
+use tetray_scene::Scene;
 
 const RECORD: u64 = 16;
 

@@ -36,6 +36,7 @@ mod validate;
 
 pub mod cells;
 pub mod structured;
+pub mod synthetic;
 
 pub use error::MeshError;
 pub use exclude::ExcludedCells;

@@ -5,7 +5,7 @@ use std::time::{Duration, Instant};
 
 use tetray_core::{Camera, Image};
 use tetray_gpu::{GpuContext, GpuIntegrator, IntegratorData};
-use tetray_raycast::Scene;
+use tetray_scene::Scene;
 
 use crate::draws::{expand, TetIntervals};
 use crate::layout::knot_scalars;

@@ -11,7 +11,8 @@ use tetray_integrate::{
     Typed,
 };
 use tetray_io::{load, LoadOptions};
-use tetray_raycast::{render_cpu, RenderOptions, Scene, SegmentIntegrator};
+use tetray_raycast::{render_cpu, RenderOptions, SegmentIntegrator};
+use tetray_scene::Scene;
 
 struct Absorb {
     cheap: bool,

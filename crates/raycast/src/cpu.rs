@@ -13,8 +13,8 @@ use tetray_core::image::{Image, ImageError};
 use tetray_core::WalkCounters;
 
 use crate::entries::EntryBins;
-use crate::scene::Scene;
 use crate::walk::{RayCounters, SegmentIntegrator, WalkLimits, Walker};
+use tetray_scene::Scene;
 
 /// Tile edge in pixels: neighbouring rays in both directions walk the same
 /// tetrahedra, so a square tile keeps them in cache.

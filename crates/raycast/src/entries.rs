@@ -21,8 +21,8 @@ use rayon::prelude::*;
 use tetray_boundary_bvh::EntryHit;
 use tetray_core::watertight::{entry_distance, RayFrame};
 
-use crate::scene::Scene;
 use tetray_core::camera::PixelRays;
+use tetray_scene::Scene;
 
 /// Entries kept per pixel.
 pub(crate) const LIST_LEN: usize = 8;
@@ -446,11 +446,15 @@ mod tests {
     use tetray_mesh::Topology;
 
     use super::*;
-    use crate::scenes::{add_field, box_grid, hollow_box, jittered_box, merge, CellSplit};
     use tetray_core::camera::Camera;
+    use tetray_mesh::synthetic::{add_field, box_grid, hollow_box, jittered_box, merge, CellSplit};
 
     fn scene(mut mesh: tetray_mesh::TetMesh) -> Scene {
-        add_field(&mut mesh, "s", crate::scenes::ScalarSpec::Constant(1.0));
+        add_field(
+            &mut mesh,
+            "s",
+            tetray_mesh::synthetic::ScalarSpec::Constant(1.0),
+        );
         let topology = Topology::build(&mesh).unwrap();
         Scene::new(mesh, topology, "s", Default::default()).unwrap()
     }

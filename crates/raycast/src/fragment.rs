@@ -16,9 +16,9 @@ use rayon::prelude::*;
 use tetray_integrate::{KernelVisitor, ScalarIntegrator, SegmentKernel, Typed};
 
 use crate::cpu::{in_pool, Frame, RenderError, RenderOptions, RenderStats, BAND_ROWS};
-use crate::scene::Scene;
 use crate::walk::{SegmentIntegrator, WalkLimits, Walker};
 use tetray_core::camera::Camera;
+use tetray_scene::Scene;
 
 /// The light of one interval of one pixel's ray inside a mesh: 32 bytes,
 /// sent as they are between processes.

@@ -1,7 +1,6 @@
-//! The CPU reference ray caster that walks a tetrahedral mesh cell to cell,
-//! and synthetic test meshes.
+//! The CPU reference ray caster that walks a tetrahedral mesh cell to cell
+//! (its [`tetray_scene::Scene`]: topology, boundary BVH, walk records).
 //!
-//! - [`Scene`]: a mesh with its topology, boundary BVH and active field;
 //! - [`render_cpu`]: one ray per pixel; each enters the mesh through the
 //!   boundary face the BVH finds, walks tet to tet through exit faces chosen
 //!   by the shared watertight predicate, and composites the integrated
@@ -13,9 +12,6 @@ mod cpu;
 mod entries;
 mod face;
 mod fragment;
-pub mod order;
-mod scene;
-pub mod scenes;
 mod walk;
 
 pub use cpu::{
@@ -23,6 +19,4 @@ pub use cpu::{
     wide_cpu, RayTrace, RenderError, RenderOptions, RenderOutput, RenderStats,
 };
 pub use fragment::{render_fragments, render_scalar_fragments, Fragment, FragmentOutput};
-pub use order::Reorder;
-pub use scene::{CellOrder, Scene, SceneError, WalkTet, FINAL_EXIT};
 pub use walk::{packed_exit_table, SegmentIntegrator};

@@ -12,7 +12,7 @@ use tetray_mesh::FACE_VERTICES;
 
 use crate::entries::EntryList;
 use crate::face::{local_index, Face, Vertex};
-use crate::scene::{Scene, FINAL_EXIT};
+use tetray_scene::{Scene, FINAL_EXIT};
 
 /// The light of one ray segment, front (nearer the eye) to back.
 ///
@@ -410,8 +410,9 @@ impl<S: Copy + Default> Walker<S> {
         };
         self.tet = bf.tet as usize;
         self.f_in = usize::from(bf.local_face);
-        let verts = scene.walk[self.tet].verts;
-        (self.face, self.s_in) = Face::enter(&scene.points, &self.projector, verts, self.f_in);
+        let verts = scene.walk_records()[self.tet].verts;
+        (self.face, self.s_in) =
+            Face::enter(scene.point_records(), &self.projector, verts, self.f_in);
         self.t_in = hit.t.max(self.t_cursor);
         self.sample_in = integrator.sample(self.s_in);
         self.interval_depth = self.t_in.max(0.0);
@@ -421,7 +422,7 @@ impl<S: Copy + Default> Walker<S> {
     /// Finds where the ray leaves the current cell and the cell it enters.
     #[inline(always)]
     fn exit<const PREFETCH: bool>(&mut self, scene: &Scene, limits: WalkLimits) {
-        let record = &scene.walk[self.tet];
+        let record = &scene.walk_records()[self.tet];
         if PREFETCH {
             // The next tetrahedron is one of the neighbours across the three
             // other faces: their records start loading now, while this step
@@ -429,10 +430,10 @@ impl<S: Copy + Default> Walker<S> {
             // one the ray came from is cached already), and a boundary
             // marker asks for the last record: no branch on which face is
             // which, whose outcome is as good as random.
-            let last = scene.walk.len() - 1;
+            let last = scene.walk_records().len() - 1;
             for &next in &record.next {
                 let index = ((next >> 2) as usize).min(last);
-                tetray_memory::prefetch(&scene.walk[index]);
+                tetray_memory::prefetch(&scene.walk_records()[index]);
             }
         }
         let counters = &mut self.counters;
@@ -443,7 +444,11 @@ impl<S: Copy + Default> Walker<S> {
             return;
         }
         // Of this cell only the vertex opposite the entry face is new.
-        let apex = Vertex::load(&scene.points, &self.projector, record.verts[self.f_in & 3]);
+        let apex = Vertex::load(
+            scene.point_records(),
+            &self.projector,
+            record.verts[self.f_in & 3],
+        );
         let Some((left_out, t_exit, s_out)) = self.face.exit(apex) else {
             // Only a degenerate (flat) tetrahedron has no exit face.
             counters.walk_failure = true;

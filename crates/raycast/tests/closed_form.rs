@@ -33,10 +33,11 @@ use tetray_core::{Camera, Image};
 use tetray_integrate::{
     IntegratorOptions, Method, OpacityMode, ScalarIntegrator, TransferFunction,
 };
-use tetray_raycast::scenes::{
+use tetray_mesh::synthetic::{
     add_field, box_grid, hollow_box, jittered_box, two_boxes, CellSplit, ScalarSpec,
 };
-use tetray_raycast::{render_scalar, RenderOptions, RenderOutput, RenderStats, Scene};
+use tetray_raycast::{render_scalar, RenderOptions, RenderOutput, RenderStats};
+use tetray_scene::Scene;
 
 /// Pixels per side of the oblique views.
 const SIZE: u32 = 40;

@@ -10,7 +10,7 @@ mod support;
 use glam::{DVec3, Vec3};
 use support::{box_chord, box_interval, linear_integral, scene, BeerLambert, LengthAndScalar};
 use tetray_core::Camera;
-use tetray_raycast::scenes::{add_field, box_grid, CellSplit, ScalarSpec};
+use tetray_mesh::synthetic::{add_field, box_grid, CellSplit, ScalarSpec};
 use tetray_raycast::{render_cpu, RenderOptions};
 
 /// 15 pixels of 0.25 world units: pixel centres at 0.25, 0.5, .., 3.75 on

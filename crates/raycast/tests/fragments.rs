@@ -8,9 +8,10 @@ use glam::Vec3;
 use tetray_boundary_bvh::BuildPreset;
 use tetray_core::Camera;
 use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunction};
+use tetray_mesh::synthetic::{add_field, box_grid, hollow_box, CellSplit, ScalarSpec};
 use tetray_mesh::{TetMesh, Topology};
-use tetray_raycast::scenes::{add_field, box_grid, hollow_box, CellSplit, ScalarSpec};
-use tetray_raycast::{render_scalar, render_scalar_fragments, Fragment, RenderOptions, Scene};
+use tetray_raycast::{render_scalar, render_scalar_fragments, Fragment, RenderOptions};
+use tetray_scene::Scene;
 
 fn scene(mut mesh: TetMesh) -> Scene {
     add_field(

@@ -26,9 +26,10 @@ use tetray_boundary_bvh::BuildPreset;
 use tetray_core::{relative_to_origin, Camera, Image};
 use tetray_integrate::{IntegratorOptions, Method, OpacityMode, ScalarIntegrator};
 use tetray_io::{load, LoadOptions};
+use tetray_mesh::synthetic::{jittered_box, CellSplit, ScalarSpec};
 use tetray_mesh::{LoadedMesh, MeshSummary};
-use tetray_raycast::scenes::{jittered_box, CellSplit, ScalarSpec};
-use tetray_raycast::{render_scalar, RenderOptions, Scene};
+use tetray_raycast::{render_scalar, RenderOptions};
+use tetray_scene::Scene;
 
 const SIZE: u32 = 40;
 const ANGLES: [(f32, f32); 2] = [(35.0, 25.0), (-120.0, -40.0)];

@@ -29,9 +29,10 @@ use support::optics::{beer_lambert, linear_field_light, transfer_function, Linea
 use support::{box_chord, box_interval};
 use tetray_boundary_bvh::BuildPreset;
 use tetray_integrate::{IntegratorOptions, Method, OpacityMode, ScalarIntegrator};
+use tetray_mesh::synthetic::{add_field, box_grid, merge, CellSplit, ScalarSpec};
 use tetray_mesh::{prepare, TetMesh};
-use tetray_raycast::scenes::{add_field, box_grid, merge, CellSplit, ScalarSpec};
-use tetray_raycast::{render_scalar, RenderOptions, Scene};
+use tetray_raycast::{render_scalar, RenderOptions};
+use tetray_scene::Scene;
 
 const SIZE: u32 = 40;
 const TOL: f64 = 1e-5;

@@ -9,9 +9,10 @@ use tetray_boundary_bvh::BuildPreset;
 use tetray_core::Camera;
 use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunction};
 use tetray_io::{load, LoadOptions};
+use tetray_mesh::synthetic::{add_field, hollow_box, CellSplit, ScalarSpec};
 use tetray_mesh::{TetMesh, Topology};
-use tetray_raycast::scenes::{add_field, hollow_box, CellSplit, ScalarSpec};
-use tetray_raycast::{render_scalar, CellOrder, RenderOptions, Scene};
+use tetray_raycast::{render_scalar, RenderOptions};
+use tetray_scene::{CellOrder, Scene};
 
 /// Largest per-pixel difference allowed between the two orders (the walk
 /// sees the same tetrahedra with the same local vertex order, so the

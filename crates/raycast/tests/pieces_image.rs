@@ -23,7 +23,8 @@ use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunc
 use tetray_io::vtk::{read_vtu_file, write_vtu, VtuEncoding};
 use tetray_io::{load, LoadOptions};
 use tetray_mesh::{ScalarField, TetMesh};
-use tetray_raycast::{render_scalar, RenderOptions, Scene};
+use tetray_raycast::{render_scalar, RenderOptions};
+use tetray_scene::Scene;
 
 fn data() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/real/blood_vessels")

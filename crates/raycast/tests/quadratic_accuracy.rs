@@ -24,7 +24,8 @@ use tetray_core::watertight::RayFrame;
 use tetray_core::Image;
 use tetray_integrate::{reference, IntegratorOptions, Method, OpacityMode, ScalarIntegrator};
 use tetray_io::vtk::{read_legacy_bytes_with, Linearize, ReadOptions};
-use tetray_raycast::{render_scalar, RenderOptions, Scene};
+use tetray_raycast::{render_scalar, RenderOptions};
+use tetray_scene::Scene;
 
 /// Cubes per side of the unit box; each cut into 6 quadratic tetrahedra.
 const CUBES: usize = 2;

@@ -3,10 +3,10 @@
 //! filling their boxes, deterministic.
 
 use glam::{DVec3, Vec3};
-use tetray_mesh::{TetMesh, Topology};
-use tetray_raycast::scenes::{
+use tetray_mesh::synthetic::{
     add_field, box_grid, hollow_box, jittered_box, two_boxes, BuildError, CellSplit, ScalarSpec,
 };
+use tetray_mesh::{TetMesh, Topology};
 
 fn volumes(mesh: &TetMesh) -> Vec<f64> {
     mesh.tets

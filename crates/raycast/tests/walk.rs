@@ -7,10 +7,11 @@ mod support;
 use glam::Vec3;
 use support::{box_chord, box_interval, linear_integral, scene, LengthAndScalar};
 use tetray_core::Camera;
-use tetray_raycast::scenes::{
+use tetray_mesh::synthetic::{
     add_field, box_grid, hollow_box, jittered_box, two_boxes, CellSplit, ScalarSpec,
 };
-use tetray_raycast::{render_cpu, RenderOptions, RenderStats, Scene};
+use tetray_raycast::{render_cpu, RenderOptions, RenderStats};
+use tetray_scene::Scene;
 
 const SIZE: u32 = 24;
 

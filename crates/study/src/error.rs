@@ -31,13 +31,13 @@ pub enum StudyError {
     #[error(transparent)]
     Load(#[from] tetray_io::IoError),
     #[error(transparent)]
-    Scene(#[from] tetray_raycast::SceneError),
+    Scene(#[from] tetray_scene::SceneError),
     #[error(transparent)]
     Render(#[from] tetray_raycast::RenderError),
     #[error(transparent)]
     Camera(#[from] tetray_core::CameraError),
     #[error(transparent)]
-    Build(#[from] tetray_raycast::scenes::BuildError),
+    Build(#[from] tetray_mesh::synthetic::BuildError),
     #[error(transparent)]
     Gpu(#[from] tetray_gpu::GpuError),
     #[error(transparent)]

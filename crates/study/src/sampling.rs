@@ -20,7 +20,8 @@ use tetray_core::{Camera, Image};
 use tetray_integrate::{
     ColorPoint, IntegratorOptions, Method, OpacityPoint, ScalarIntegrator, TransferFunction,
 };
-use tetray_raycast::{render_scalar, RenderOptions, Scene};
+use tetray_raycast::{render_scalar, RenderOptions};
+use tetray_scene::Scene;
 use tetray_shearwarp::{Classification, ClassifyOptions, RegularGrid, ShearWarp, ShearWarpOptions};
 
 use crate::output::{Cell, Csv, OutputDir};

@@ -20,9 +20,10 @@ use tetray_core::Camera;
 use tetray_gpu::{GpuContext, GpuIntegrator, GpuRaycaster, GpuRenderOptions, GpuScene};
 use tetray_integrate::reference::{attenuation_segment, opacity_segment};
 use tetray_integrate::{IntegratorOptions, Material, Method, Model, ScalarIntegrator, TfKnots};
+use tetray_mesh::synthetic::{add_field, box_grid, CellSplit, ScalarSpec};
 use tetray_mesh::Topology;
-use tetray_raycast::scenes::{add_field, box_grid, CellSplit, ScalarSpec};
-use tetray_raycast::{render_scalar, RenderOptions, Scene};
+use tetray_raycast::{render_scalar, RenderOptions};
+use tetray_scene::Scene;
 
 use crate::cells;
 use crate::output::{Csv, OutputDir};

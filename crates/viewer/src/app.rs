@@ -9,7 +9,7 @@ use egui::{PointerButton, Rect, Sense};
 use glam::Vec3;
 use tetray_core::Camera;
 use tetray_integrate::{Method, OpacityMode, TransferFunction};
-use tetray_raycast::Scene;
+use tetray_scene::Scene;
 use tetray_shearwarp::{Classification, ClassifyOptions, ShearWarp};
 
 use crate::camera_ui;

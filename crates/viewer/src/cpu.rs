@@ -12,7 +12,8 @@ use std::time::Duration;
 use tetray_core::Image;
 use tetray_core::WalkCounters;
 use tetray_integrate::ScalarIntegrator;
-use tetray_raycast::{render_scalar_with_progress, RenderOptions, Scene};
+use tetray_raycast::{render_scalar_with_progress, RenderOptions};
+use tetray_scene::Scene;
 use tetray_shearwarp::{Classification, ShearWarp, ShearWarpOptions};
 
 use crate::engine::{FrameKey, FrameReport};

@@ -6,7 +6,7 @@
 use anyhow::Context;
 use tetray_boundary_bvh::BuildPreset;
 use tetray_mesh::{mean_tet_chord, LoadedMesh, TetMesh, Topology};
-use tetray_raycast::Scene;
+use tetray_scene::Scene;
 use tetray_shearwarp::RegularGrid;
 
 /// A loaded mesh and its defaults.

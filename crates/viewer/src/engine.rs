@@ -13,7 +13,7 @@ use tetray_gpu::{
     walk_counters, FrameJob, GpuContext, GpuIntegrator, GpuRaycaster, GpuRenderOptions, GpuScene,
     GpuTarget,
 };
-use tetray_raycast::Scene;
+use tetray_scene::Scene;
 
 use crate::gpu_io;
 use crate::pacing::Pacer;

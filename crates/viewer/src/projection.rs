@@ -13,7 +13,7 @@ use tetray_project::layout::knot_scalars;
 use tetray_project::{
     plan, GpuProjectScene, GpuProjector, ProjectScene, SortKind, TetIntervals, View,
 };
-use tetray_raycast::Scene;
+use tetray_scene::Scene;
 
 use crate::engine::{FrameKey, FrameReport};
 

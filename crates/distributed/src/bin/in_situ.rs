@@ -24,9 +24,10 @@ use tetray_distributed::{
 };
 use tetray_integrate::{IntegratorOptions, ScalarIntegrator, TransferFunction};
 use tetray_mesh::cells::{assemble_at, CellArray, CellGrid, ReadOptions};
+use tetray_mesh::synthetic::{hollow_box, CellSplit};
 use tetray_mesh::{paraview_unit_distance, prepare, ScalarField, TetMesh};
-use tetray_raycast::scenes::{hollow_box, CellSplit};
-use tetray_raycast::{render_scalar, RenderOptions, Scene};
+use tetray_raycast::{render_scalar, RenderOptions};
+use tetray_scene::Scene;
 
 /// A nonlinear field, so a wrong split or order would show.
 fn field(p: Vec3) -> f32 {

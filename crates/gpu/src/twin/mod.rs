@@ -396,8 +396,8 @@ fn cast_ray(input: &Inputs, px: u32, py: u32) -> (Vec4, Counters) {
             sample_in = sample_out;
             let next = input.tets[2 * tet as usize + 1][f_out];
             counters.traffic.tet_bytes += RECORD_BYTES;
-            if next >= tetray_raycast::FINAL_EXIT {
-                done = next == tetray_raycast::FINAL_EXIT;
+            if next >= tetray_scene::FINAL_EXIT {
+                done = next == tetray_scene::FINAL_EXIT;
                 t_cursor = t_out;
                 break;
             }

@@ -15,7 +15,8 @@ use tetray_gpu::{
 };
 use tetray_integrate::ScalarIntegrator;
 use tetray_mesh::{TetMesh, Topology};
-use tetray_raycast::{render_scalar, RenderOptions, RenderStats, Scene};
+use tetray_raycast::{render_scalar, RenderOptions, RenderStats};
+use tetray_scene::Scene;
 
 /// The adapter and compiled kernel, shared by a test binary. `None` (with a
 /// loud message) when there is no adapter, unless `TETRAY_REQUIRE_GPU=1`

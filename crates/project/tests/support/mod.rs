@@ -16,13 +16,14 @@ use tetray_integrate::{
     ColorPoint, IntegratorOptions, Method, OpacityMode, OpacityPoint, ScalarIntegrator,
     TransferFunction,
 };
+use tetray_mesh::synthetic::{jittered_box, CellSplit};
 use tetray_mesh::{ScalarField, TetMesh, Topology};
 use tetray_project::{
     layout::knot_scalars, plan, samples_adaptively, twin, GpuProjectScene, GpuProjector,
     ProjectScene, SortKind, TetIntervals, View,
 };
-use tetray_raycast::scenes::{jittered_box, CellSplit};
-use tetray_raycast::{render_scalar, RenderOptions, Scene};
+use tetray_raycast::{render_scalar, RenderOptions};
+use tetray_scene::Scene;
 
 /// The adapter, shared by a test binary. `None` (with a loud message) when
 /// there is none, unless `TETRAY_REQUIRE_GPU=1` (CI), where that fails.

@@ -5,8 +5,8 @@ use glam::Vec3A;
 use tetray_mesh::Topology;
 
 use super::*;
-use crate::scenes::{add_field, hollow_box, CellSplit, ScalarSpec};
 use crate::walk::SegmentIntegrator;
+use tetray_mesh::synthetic::{add_field, hollow_box, CellSplit, ScalarSpec};
 
 /// Light growing with the segment's length and scalars.
 pub(crate) struct Glow;

@@ -11,7 +11,8 @@ use glam::{DVec3, Vec3};
 use tetray_boundary_bvh::BuildPreset;
 use tetray_core::watertight::RayFrame;
 use tetray_mesh::{TetMesh, Topology};
-use tetray_raycast::{Scene, SegmentIntegrator};
+use tetray_raycast::SegmentIntegrator;
+use tetray_scene::Scene;
 
 /// Builds a scene with the default BVH preset.
 pub fn scene(mesh: TetMesh, field: &str) -> Scene {

@@ -8,7 +8,7 @@ use std::ops::{Add, Mul, Sub};
 use glam::{DVec3, Vec3};
 use tetray_core::watertight::RayFrame;
 use tetray_integrate::{reference, ColorPoint, OpacityPoint, TransferFunction};
-use tetray_raycast::scenes::ScalarSpec;
+use tetray_mesh::synthetic::ScalarSpec;
 
 /// A transfer function from `(scalar, rgb)` and `(scalar, alpha)` points.
 pub fn transfer_function(colors: &[(f32, [f32; 3])], alphas: &[(f32, f32)]) -> TransferFunction {

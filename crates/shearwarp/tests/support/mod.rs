@@ -11,7 +11,8 @@ use tetray_integrate::{
     ColorPoint, IntegratorOptions, Method, OpacityMode, OpacityPoint, ScalarIntegrator,
     TransferFunction,
 };
-use tetray_raycast::{render_scalar, RenderOptions, Scene};
+use tetray_raycast::{render_scalar, RenderOptions};
+use tetray_scene::Scene;
 use tetray_shearwarp::RegularGrid;
 
 /// The VTK view after ResetCamera, turned by azimuth and elevation.

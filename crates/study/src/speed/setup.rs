@@ -11,9 +11,9 @@ use tetray_boundary_bvh::BuildPreset;
 use tetray_core::Camera;
 use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunction};
 use tetray_io::LoadOptions;
+use tetray_mesh::synthetic::{box_grid, CellSplit};
 use tetray_mesh::{mean_tet_chord, ScalarField, TetMesh, Topology};
-use tetray_raycast::scenes::{box_grid, CellSplit};
-use tetray_raycast::Scene;
+use tetray_scene::Scene;
 
 use crate::StudyError;
 

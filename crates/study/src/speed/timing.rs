@@ -60,7 +60,7 @@ pub(crate) fn orbit(
 
 /// The CPU ray caster (rayon's pool), by wall clock.
 pub fn time_cpu(
-    scene: &tetray_raycast::Scene,
+    scene: &tetray_scene::Scene,
     camera: &Camera,
     integrator: &ScalarIntegrator,
     (width, height): (u32, u32),

@@ -4,8 +4,8 @@
 //! Every builder returns a positively oriented, conforming mesh without
 //! fields; attach point scalars with [`add_field`].
 
+use crate::{ScalarField, TetMesh};
 use glam::{DVec3, Vec3};
-use tetray_mesh::{ScalarField, TetMesh};
 
 /// Why a synthetic mesh could not be built.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

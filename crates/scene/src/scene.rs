@@ -81,10 +81,10 @@ pub struct Scene {
     /// The active field's name and values (one per point).
     pub field: String,
     pub scalar: Vec<f32>,
-    pub(crate) walk: Vec<WalkTet>,
+    walk: Vec<WalkTet>,
     /// Per point: position and active scalar, read together.
-    pub(crate) points: Vec<[f32; 4]>,
-    pub(crate) bounds: (Vec3, Vec3),
+    points: Vec<[f32; 4]>,
+    bounds: (Vec3, Vec3),
     /// The renumbering applied to the input mesh, if any.
     order: Option<Reorder>,
 }
@@ -229,6 +229,7 @@ impl Scene {
     }
 
     /// Axis-aligned bounds of the mesh points.
+    #[inline]
     pub fn bounds(&self) -> (Vec3, Vec3) {
         self.bounds
     }
@@ -241,11 +242,13 @@ impl Scene {
     /// What the walk reads per tetrahedron: its points and, across each
     /// local face, `neighbour << 2 | its local face` or a boundary marker
     /// (`NO_NEIGHBOR`, [`FINAL_EXIT`]). The GPU kernel uploads this.
+    #[inline]
     pub fn walk_records(&self) -> &[WalkTet] {
         &self.walk
     }
 
     /// Per point: position and active scalar, `[x, y, z, s]`.
+    #[inline]
     pub fn point_records(&self) -> &[[f32; 4]] {
         &self.points
     }

@@ -1,0 +1,14 @@
+//! A tetrahedral mesh made ready to be walked by a ray, shared by every
+//! renderer that walks or projects tetrahedra (the CPU ray caster, the GPU
+//! kernel's uploads, the cell projection):
+//!
+//! - [`Scene`]: the mesh, its topology and boundary BVH, the active field,
+//!   and per tetrahedron the 32-byte record a walk reads per step;
+//! - [`order`]: the Morton renumbering that keeps neighbouring cells
+//!   together in memory.
+
+pub mod order;
+mod scene;
+
+pub use order::Reorder;
+pub use scene::{CellOrder, Scene, SceneError, WalkTet, FINAL_EXIT};
