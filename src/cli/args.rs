@@ -7,6 +7,7 @@ use std::path::PathBuf;
 use clap::{Args, ValueEnum};
 use glam::{DVec3, Vec3};
 use tetray_boundary_bvh::BuildPreset;
+use tetray_core::defaults::{PREINTEGRATION_TABLE_SIZE, PSI_TABLE_SIZE, VIEW_ANGLE};
 use tetray_integrate::{Method, OpacityMode};
 use tetray_project::SortKind;
 
@@ -60,7 +61,7 @@ impl From<LinearizeArg> for tetray_io::vtk::Linearize {
 /// VTK/ParaView camera. Whatever is not given comes from a
 /// `vtkRenderer::ResetCamera` fit of the mesh bounds, looking down -z;
 /// with no camera flag at all, the fit is then turned to an oblique view
-/// ([`tetray_frame::DEFAULT_VIEW`]).
+/// ([`tetray_engine::DEFAULT_VIEW`]).
 #[derive(Debug, Clone, Default, Args)]
 pub struct CameraArgs {
     /// Camera position x,y,z (world units: the file's coordinates, read in
@@ -74,7 +75,7 @@ pub struct CameraArgs {
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
     pub view_up: Option<Vec3>,
     /// Full vertical view angle in degrees (perspective).
-    #[arg(long, value_name = "DEGREES", default_value_t = 30.0, value_parser = parse_view_angle, allow_hyphen_values = true)]
+    #[arg(long, value_name = "DEGREES", default_value_t = VIEW_ANGLE, value_parser = parse_view_angle, allow_hyphen_values = true)]
     pub view_angle: f32,
     /// Orthographic projection with this half view height (world units),
     /// as VTK's ParallelScale. Without it the projection is perspective.
@@ -82,7 +83,7 @@ pub struct CameraArgs {
     pub parallel_scale: Option<f32>,
     /// Rotate the camera about the view-up by this many degrees, after the
     /// fit (vtkCamera::Azimuth). Default 0 when any camera flag is given;
-    /// with none, the default view is oblique (see [`tetray_frame::DEFAULT_VIEW`]).
+    /// with none, the default view is oblique (see [`tetray_engine::DEFAULT_VIEW`]).
     #[arg(long, value_name = "DEGREES", value_parser = parse_finite, allow_hyphen_values = true)]
     pub azimuth: Option<f32>,
     /// Then rotate it up by this many degrees (vtkCamera::Elevation,
@@ -93,9 +94,9 @@ pub struct CameraArgs {
 
 impl CameraArgs {
     /// The flags (their azimuth and elevation default:
-    /// [`tetray_frame::CameraOptions::rotation`]) as the frame library's options.
-    pub fn options(&self) -> tetray_frame::CameraOptions {
-        tetray_frame::CameraOptions {
+    /// [`tetray_engine::CameraOptions::rotation`]) as the frame library's options.
+    pub fn options(&self) -> tetray_engine::CameraOptions {
+        tetray_engine::CameraOptions {
             camera_position: self.camera_position,
             focal_point: self.focal_point,
             view_up: self.view_up,
@@ -108,16 +109,31 @@ impl CameraArgs {
 }
 
 impl MeshArgs {
-    /// The flags as the frame library's options.
-    pub fn options(&self) -> tetray_frame::MeshOptions {
-        tetray_frame::MeshOptions {
-            mesh: self.mesh.clone(),
-            q: self.q.clone(),
-            time_step: self.time_step,
-            time: self.time,
-            block: self.block.clone(),
-            linearize: self.linearize.into(),
-        }
+    /// The data the flags name: the file, or the embedded Blunt Fin when
+    /// none is given (which takes no file options).
+    pub fn source(&self) -> anyhow::Result<tetray_engine::Source> {
+        let Some(path) = &self.mesh else {
+            if self.q.is_some() {
+                anyhow::bail!("--q needs a PLOT3D grid file (the embedded dataset has its own)");
+            }
+            if self.time_step.is_some() || self.time.is_some() {
+                anyhow::bail!("--time-step and --time need a file with time steps");
+            }
+            if self.block.is_some() {
+                anyhow::bail!("--block needs a multi-block file (.vtm)");
+            }
+            return Ok(tetray_engine::Source::Embedded);
+        };
+        Ok(tetray_engine::Source::File {
+            path: path.clone(),
+            options: tetray_io::LoadOptions {
+                plot3d_q: self.q.clone(),
+                time_step: self.time_step,
+                time: self.time,
+                block: self.block.clone(),
+                linearize: self.linearize.into(),
+            },
+        })
     }
 }
 
@@ -181,14 +197,14 @@ pub struct IntegratorArgs {
     #[arg(long, value_enum, default_value_t = OpacityModeArg::Exact)]
     pub opacity_mode: OpacityModeArg,
     /// Psi table nodes per axis (ppi).
-    #[arg(long, value_name = "N", default_value_t = 1024)]
+    #[arg(long, value_name = "N", default_value_t = PSI_TABLE_SIZE)]
     pub psi_size: usize,
     /// Step of the Riemann sum (world units). Default: a quarter of the
     /// mean tetrahedron chord length.
     #[arg(long, value_name = "STEP", value_parser = parse_positive, allow_hyphen_values = true)]
     pub riemann_step: Option<f32>,
     /// Full pre-integration table nodes per axis (preintegrated).
-    #[arg(long, value_name = "N", default_value_t = 256)]
+    #[arg(long, value_name = "N", default_value_t = PREINTEGRATION_TABLE_SIZE)]
     pub preintegration_size: usize,
     /// Do not cut segments at the transfer function's control points
     /// (section 4.3); only to study what the cut buys.
@@ -199,17 +215,17 @@ pub struct IntegratorArgs {
 impl IntegratorArgs {
     /// The flags as the frame library's options; `tf_text` is the `--tf`
     /// file's content, read by the caller.
-    pub fn choice(&self, tf_text: Option<String>) -> tetray_frame::IntegratorChoice {
+    pub fn choice(&self, tf_text: Option<String>) -> tetray_engine::IntegratorChoice {
         let tf = match (&self.tf, tf_text) {
-            (Some(path), Some(text)) => tetray_frame::TfSource::ParaView {
+            (Some(path), Some(text)) => tetray_engine::TfSource::ParaView {
                 text,
                 name: self.tf_name.clone(),
                 rescale: !self.no_rescale,
                 label: format!("--tf {}", path.display()),
             },
-            _ => tetray_frame::TfSource::Default,
+            _ => tetray_engine::TfSource::Default,
         };
-        tetray_frame::IntegratorChoice {
+        tetray_engine::IntegratorChoice {
             scalar: self.scalar.clone(),
             method: self.integrator,
             tf,
@@ -276,21 +292,21 @@ pub struct WalkArgs {
     pub no_adaptive_tf: bool,
 }
 
-impl From<RendererArg> for tetray_frame::RendererChoice {
+impl From<RendererArg> for tetray_engine::RendererChoice {
     fn from(arg: RendererArg) -> Self {
         match arg {
-            RendererArg::Auto => tetray_frame::RendererChoice::Auto,
-            RendererArg::Cpu => tetray_frame::RendererChoice::Cpu,
-            RendererArg::Gpu => tetray_frame::RendererChoice::Gpu,
-            RendererArg::Project => tetray_frame::RendererChoice::Project,
-            RendererArg::ShearWarp => tetray_frame::RendererChoice::ShearWarp,
+            RendererArg::Auto => tetray_engine::RendererChoice::Auto,
+            RendererArg::Cpu => tetray_engine::RendererChoice::Cpu,
+            RendererArg::Gpu => tetray_engine::RendererChoice::Gpu,
+            RendererArg::Project => tetray_engine::RendererChoice::Project,
+            RendererArg::ShearWarp => tetray_engine::RendererChoice::ShearWarp,
         }
     }
 }
 
-impl From<&WalkArgs> for tetray_frame::WalkOptions {
+impl From<&WalkArgs> for tetray_engine::WalkOptions {
     fn from(walk: &WalkArgs) -> Self {
-        tetray_frame::WalkOptions {
+        tetray_engine::WalkOptions {
             early_termination: walk.early_termination,
             max_steps: walk.max_steps,
             sort: walk.sort,

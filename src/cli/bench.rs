@@ -1,12 +1,10 @@
 //! `tetray bench`: frame times over an orbit of the camera, as JSON.
 
 use super::args::{parse_finite, parse_size, CameraArgs, IntegratorArgs, MeshArgs, WalkArgs};
-use super::renderer::Engine;
 use super::{render, scene};
-use anyhow::Context;
 use clap::Args;
 use serde::Serialize;
-use tetray_core::WalkCounters;
+use tetray_engine::Engine;
 
 /// `tetray bench`.
 #[derive(Debug, Clone, Args)]
@@ -113,37 +111,24 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     // Progress goes to stderr; stdout holds only the JSON.
     let setup = scene::prepare(frame, &|line| eprintln!("{line}"))?;
     let engine = Engine::new(args.walk.renderer, &setup, &|line| eprintln!("{line}"))?;
-    let mut camera = setup.camera;
     let orbit_step = args.orbit_step.unwrap_or(360.0 / args.frames as f32);
-
-    // Warm-up: page faults, caches and shader compilation stay out of the
-    // timings.
-    engine
-        .render(&setup, &camera, &args.walk, args.size, None)
-        .context("warm-up frame")?;
-    let mut times_ms = Vec::with_capacity(args.frames as usize);
-    let mut stages: Vec<tetray_project::ProjectStats> = Vec::new();
-    let mut total = WalkCounters::default();
-    let mut entry_lists_frames = 0u32;
-    for frame in 0..args.frames {
-        let output = engine
-            .render(&setup, &camera, &args.walk, args.size, None)
-            .with_context(|| format!("frame {frame}"))?;
-        let stats = output.stats;
-        times_ms.push(stats.elapsed.as_secs_f64() * 1e3);
-        total = total.merge(stats.counters);
-        entry_lists_frames += u32::from(stats.entry_lists);
-        stages.extend(stats.project);
-        camera.azimuth(orbit_step).context("orbiting the camera")?;
-        camera
-            .orthogonalize_view_up()
-            .context("orbiting the camera")?;
-    }
+    let timing = tetray_engine::Timing {
+        frames: args.frames,
+        orbit_step,
+        warm_up: true,
+    };
+    let walk = tetray_engine::WalkOptions::from(&args.walk);
+    let measured = tetray_engine::measure(&engine, &setup, &setup.camera, walk, args.size, timing)?;
+    let times_ms = measured.times_ms();
+    let stages: Vec<tetray_project::ProjectStats> =
+        measured.frames.iter().filter_map(|s| s.project).collect();
+    let total = measured.total;
+    let entry_lists_frames = measured.frames.iter().filter(|s| s.entry_lists).count() as u32;
     render::warn_about(&total);
 
     let total_s = times_ms.iter().sum::<f64>() / 1e3;
     let per_s = |count: f64| count / total_s.max(1e-12);
-    let median = median(&times_ms);
+    let median = tetray_engine::median(&times_ms);
     let deviations: Vec<f64> = times_ms.iter().map(|t| (t - median).abs()).collect();
     let threads = rayon::current_num_threads();
     let frames = f64::from(args.frames);
@@ -157,12 +142,9 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
             "wall clock"
         },
         threads,
-        mesh: setup.mesh_name.clone(),
+        mesh: setup.name().to_string(),
         tets,
-        boundary_faces: setup
-            .scene
-            .as_ref()
-            .map_or(0, |s| s.topology.boundary_faces.len()),
+        boundary_faces: setup.boundary_faces(),
         size: format!("{}x{}", args.size.0, args.size.1),
         width: args.size.0,
         height: args.size.1,
@@ -174,7 +156,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         ms_per_frame_median: median,
         ms_per_frame_min: times_ms.iter().copied().fold(f64::INFINITY, f64::min),
         ms_per_frame_max: times_ms.iter().copied().fold(0.0, f64::max),
-        ms_per_frame_mad: self::median(&deviations),
+        ms_per_frame_mad: tetray_engine::median(&deviations),
         rays_per_s: per_s(total.rays as f64),
         segments_per_s: per_s(total.segments as f64),
         segments_per_frame: total.segments as f64 / frames,
@@ -195,7 +177,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
 /// Medians of the projection's stages over the frames.
 fn projection_json(stages: &[tetray_project::ProjectStats], walk: &WalkArgs) -> ProjectionJson {
     let ms = |f: &dyn Fn(&tetray_project::ProjectStats) -> std::time::Duration| {
-        median(
+        tetray_engine::median(
             &stages
                 .iter()
                 .map(|s| f(s).as_secs_f64() * 1e3)
@@ -226,17 +208,5 @@ fn projection_json(stages: &[tetray_project::ProjectStats], walk: &WalkArgs) -> 
         extra_draws_per_frame: extra,
         extra_draws_percent: 100.0 * extra / tets.max(1.0),
         cycle_breaks: stages.iter().map(|s| s.cycle_breaks).max().unwrap_or(0),
-    }
-}
-
-/// The median of a non-empty list.
-fn median(values: &[f64]) -> f64 {
-    let mut sorted = values.to_vec();
-    sorted.sort_by(f64::total_cmp);
-    let n = sorted.len();
-    if n % 2 == 1 {
-        sorted[n / 2]
-    } else {
-        0.5 * (sorted[n / 2 - 1] + sorted[n / 2])
     }
 }

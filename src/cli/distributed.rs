@@ -11,24 +11,16 @@
 //! `--distributed` (then also on one rank); otherwise the commands run in
 //! one process as without the feature, and MPI is not initialised.
 
-use std::path::Path;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use anyhow::{bail, Context};
 use clap::Args;
-use glam::DVec3;
 use serde::Serialize;
 use tetray_core::{Camera, Image};
 use tetray_distributed::mpi::topology::SimpleCommunicator;
 use tetray_distributed::mpi::traits::*;
-use tetray_distributed::transport::reduce_bounds;
-use tetray_distributed::{
-    agree, pieces_for_rank, render_distributed, spatial_split, DistributedFrame, FrameReport,
-};
-use tetray_io::vtk::{parallel_piece_count, read_piece_subset};
-use tetray_mesh::{centring_origin, LoadedMesh, ScalarField, TetMesh, Topology};
+use tetray_distributed::{prepare_part, render_setup, DistributedFrame, FrameReport, Part};
 use tetray_raycast::RenderOptions;
-use tetray_scene::Scene;
 
 use super::args::{CameraArgs, IntegratorArgs, MeshArgs, RendererArg, WalkArgs};
 use super::scene;
@@ -61,19 +53,6 @@ impl DistributedArgs {
     }
 }
 
-/// This rank's part of the mesh and what every rank agreed on.
-struct Part {
-    name: String,
-    scene: Option<Scene>,
-    camera: Camera,
-    integrator: tetray_integrate::ScalarIntegrator,
-    method: tetray_integrate::Method,
-    field: String,
-    tets_total: u64,
-    load_time: Duration,
-    setup_time: Duration,
-}
-
 /// What `prepare` takes, borrowed from any of the three commands.
 struct FrameInput<'a> {
     mesh: &'a MeshArgs,
@@ -103,73 +82,10 @@ fn with_world(work: impl FnOnce(&SimpleCommunicator) -> anyhow::Result<()>) -> a
     Ok(())
 }
 
-/// Loads this rank's part: pieces `pieces_for_rank` of a parallel file
-/// (with the whole mesh's origin), or a spatial slab of any other mesh
-/// (loaded whole on every rank). Returns the part (`None`: nothing for this
-/// rank), its share of the input cells and the origin.
-fn load_part<C: Communicator>(
-    comm: &C,
-    args: &MeshArgs,
-) -> anyhow::Result<(String, Option<LoadedMesh>, usize, DVec3)> {
-    let (rank, size) = (comm.rank() as usize, comm.size() as usize);
-    let parallel = args.mesh.as_deref().filter(|p| is_parallel(p));
-    if let Some(path) = parallel {
-        let name = path.display().to_string();
-        if !path.is_file() {
-            bail!("{name}: no such file");
-        }
-        let pieces = parallel_piece_count(path)?;
-        let mine = pieces_for_rank(pieces, rank, size);
-        let subset = if mine.is_empty() {
-            None
-        } else {
-            Some(read_piece_subset(path, mine)?)
-        };
-        let bounds = reduce_bounds(comm, subset.as_ref().and_then(|s| s.bounds()))
-            .with_context(|| format!("{name}: no points in any piece"))?;
-        let origin = centring_origin(bounds.0, bounds.1);
-        let options = tetray_io::LoadOptions {
-            linearize: args.linearize.into(),
-            ..tetray_io::LoadOptions::default()
-        };
-        let loaded = match subset {
-            Some(s) => Some(tetray_io::load_piece_subset(s, origin, &options)?),
-            None => None,
-        };
-        let cells = loaded.as_ref().map_or(0, LoadedMesh::input_cells);
-        return Ok((name, loaded, cells, origin));
-    }
-    let input = scene::load_mesh(args)?;
-    let whole = &input.loaded;
-    let mesh = spatial_split(&whole.mesh, rank, size);
-    // The whole mesh's cell count, counted once (for the unit distance).
-    let cells = if rank == 0 { input.input_cells() } else { 0 };
-    let origin = whole.origin();
-    let loaded = if mesh.tets.is_empty() {
-        None
-    } else {
-        let topology = Topology::build(&mesh).context("the part's topology")?;
-        Some(LoadedMesh {
-            mesh,
-            topology,
-            report: whole.report.clone(),
-        })
-    };
-    Ok((input.name, loaded, cells, origin))
-}
-
-fn is_parallel(path: &Path) -> bool {
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
-    matches!(ext.as_deref(), Some("pvtu" | "pvts" | "pvtr" | "pvti"))
-}
-
-/// Loads this rank's part and builds what `scene::prepare` builds for the
-/// whole mesh, from the values the ranks agree on.
-/// Progress lines go to stdout, or to stderr with `quiet` (the bench's
-/// stdout holds only its JSON); rank 0 alone writes them.
+/// This rank's part through `tetray_distributed::prepare_part` (the
+/// engine's setup of the part, from what the ranks agree on). Progress
+/// lines go to stdout, or to stderr with `quiet` (the bench's stdout holds
+/// only its JSON); rank 0 alone writes them.
 fn prepare<C: Communicator>(comm: &C, input: &FrameInput<'_>, quiet: bool) -> anyhow::Result<Part> {
     let rank0 = comm.rank() == 0;
     let log = |line: String| match (rank0, quiet) {
@@ -186,91 +102,24 @@ fn prepare<C: Communicator>(comm: &C, input: &FrameInput<'_>, quiet: bool) -> an
              in front of its fragments): leave --early-termination at 1"
         );
     }
-    let tf_text = match &input.integrator.tf {
-        Some(path) => Some(
-            std::fs::read_to_string(path)
-                .with_context(|| format!("--tf {}: cannot read", path.display()))?,
-        ),
-        None => None,
+    let frame = scene::FrameArgs {
+        mesh: input.mesh,
+        integrator: input.integrator,
+        camera: input.camera,
+        walk: input.walk,
+        size: input.size,
     };
-    let args = &input.integrator.choice(tf_text);
+    let options = frame.options(scene::read_tf(input.integrator)?);
     let warn = |line: String| {
         if rank0 {
             scene::warn(line);
         }
     };
-    let flog = tetray_frame::Log {
+    let log = tetray_engine::Log {
         info: &log,
         warn: &warn,
     };
-    let start = Instant::now();
-    let (name, loaded, cells, origin) = load_part(comm, input.mesh)?;
-    let load_time = start.elapsed();
-    let start = Instant::now();
-    let agreed = agree(
-        comm,
-        loaded.as_ref().map(|l| &l.mesh),
-        cells,
-        args.scalar.as_deref(),
-    )?;
-    let summary = &agreed.summary;
-    log(format!(
-        "loaded {name} over {} ranks: {} tetrahedra in all, this rank {} ({:.3} s)",
-        comm.size(),
-        summary.tets,
-        loaded.as_ref().map_or(0, |l| l.mesh.tets.len()),
-        load_time.as_secs_f64()
-    ));
-    let field = agreed.field.clone().unwrap_or_else(|| {
-        if rank0 {
-            eprintln!("warning: {name} has no point scalar field: rendering a uniform volume");
-        }
-        tetray_frame::SOLID.to_string()
-    });
-    let scene = match loaded {
-        Some(mut l) => {
-            if agreed.field.is_none() {
-                add_zero_field(&mut l.mesh, &field);
-            }
-            let faces = l.topology.boundary_faces.len();
-            let preset = tetray_frame::bvh_preset_for(input.walk.bvh_preset, faces);
-            Some(
-                Scene::new(l.mesh, l.topology, &field, preset)
-                    .with_context(|| format!("{name}: preparing this rank's part"))?,
-            )
-        }
-        None => None,
-    };
-    let bounds = summary.bounds;
-    let camera = tetray_frame::build_camera(&input.camera.options(), bounds, input.size, origin)?;
-    tetray_frame::setup::warn_if_inside(&camera, bounds, flog);
-    let unit_distance = args
-        .unit_distance
-        .unwrap_or_else(|| summary.paraview_unit_distance());
-    let range = agreed.range;
-    let tf =
-        tetray_frame::setup::transfer_function(args, &field, range, bounds, unit_distance, flog)?;
-    let options =
-        tetray_frame::setup::integrator_options(args, unit_distance, summary.mean_chord(), range);
-    let (integrator, _) = tetray_frame::setup::integrator(args, &tf, &options, &field, flog)?;
-    Ok(Part {
-        name,
-        scene,
-        camera,
-        integrator,
-        method: args.method,
-        field,
-        tets_total: summary.tets,
-        load_time,
-        setup_time: start.elapsed(),
-    })
-}
-
-fn add_zero_field(mesh: &mut TetMesh, name: &str) {
-    mesh.fields.push(ScalarField {
-        name: name.into(),
-        values: vec![0.0; mesh.points.len()],
-    });
+    Ok(prepare_part(comm, input.mesh.source()?, &options, log)?)
 }
 
 fn render_options(walk: &WalkArgs, (width, height): (u32, u32)) -> RenderOptions {
@@ -290,14 +139,7 @@ fn frame<C: Communicator>(
     opts: &RenderOptions,
     tile: u32,
 ) -> anyhow::Result<Option<DistributedFrame>> {
-    Ok(render_distributed(
-        comm,
-        part.scene.as_ref(),
-        camera,
-        &part.integrator,
-        opts,
-        tile,
-    )?)
+    Ok(render_setup(comm, &part.setup, camera, opts, tile)?)
 }
 
 /// `tetray render`, distributed; `None` when not asked for.
@@ -323,7 +165,14 @@ fn run_render(args: &super::args::RenderArgs) -> anyhow::Result<()> {
         let part = prepare(world, &input, false)?;
         let opts = render_options(&args.walk, args.output.size);
         let start = Instant::now();
-        let Some(frame) = frame(world, &part, &part.camera, &opts, args.distributed.tile)? else {
+        let Some(frame) = frame(
+            world,
+            &part,
+            &part.setup.camera,
+            &opts,
+            args.distributed.tile,
+        )?
+        else {
             return Ok(());
         };
         let (w, h) = args.output.size;
@@ -397,7 +246,7 @@ fn run_bench(args: &super::bench::BenchArgs) -> anyhow::Result<()> {
         let part = prepare(world, &input, true)?;
         let opts = render_options(&args.walk, args.size);
         let tile = args.distributed.tile;
-        let mut camera = part.camera;
+        let mut camera = part.setup.camera;
         let orbit_step = args.orbit_step.unwrap_or(360.0 / args.frames as f32);
         frame(world, &part, &camera, &opts, tile).context("warm-up frame")?;
         let mut times = Vec::new();
@@ -416,8 +265,9 @@ fn run_bench(args: &super::bench::BenchArgs) -> anyhow::Result<()> {
         if world.rank() != 0 {
             return Ok(());
         }
-        let med =
-            |f: &dyn Fn(&FrameReport) -> f64| median(&reports.iter().map(f).collect::<Vec<_>>());
+        let med = |f: &dyn Fn(&FrameReport) -> f64| {
+            tetray_engine::median(&reports.iter().map(f).collect::<Vec<_>>())
+        };
         let ms = 1e3;
         let received_max = med(&|r| r.max(|x| x.fragments_received)).max(1.0);
         let sent_max = med(&|r| r.max(|x| x.bytes_exchanged)).max(1.0);
@@ -425,14 +275,14 @@ fn run_bench(args: &super::bench::BenchArgs) -> anyhow::Result<()> {
             renderer: "cpu-distributed",
             ranks: world.size() as usize,
             threads_per_rank: rayon::current_num_threads(),
-            mesh: part.name.clone(),
+            mesh: part.setup.name().to_string(),
             tets: part.tets_total,
             size: format!("{}x{}", args.size.0, args.size.1),
-            integrator: part.method.name(),
-            field: part.field.clone(),
+            integrator: part.setup.method.name(),
+            field: part.setup.extent.field.clone(),
             frames: args.frames,
             tile,
-            ms_per_frame_median: median(&times),
+            ms_per_frame_median: tetray_engine::median(&times),
             trace_ms_max_median: med(&|r| r.max(|x| x.trace_s)) * ms,
             trace_ms_mean_median: med(&|r| r.mean(|x| x.trace_s)) * ms,
             fragments_per_frame: med(&|r| r.sum(|x| x.fragments_sent)),
@@ -453,16 +303,6 @@ fn run_bench(args: &super::bench::BenchArgs) -> anyhow::Result<()> {
         println!("{}", serde_json::to_string_pretty(&json)?);
         Ok(())
     })
-}
-
-fn median(values: &[f64]) -> f64 {
-    let mut sorted = values.to_vec();
-    sorted.sort_by(f64::total_cmp);
-    match sorted.len() {
-        0 => 0.0,
-        n if n % 2 == 1 => sorted[n / 2],
-        n => 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]),
-    }
 }
 
 /// `tetray compare`, distributed: the composited image against the
@@ -512,7 +352,13 @@ fn run_compare(args: &super::compare::CompareArgs) -> anyhow::Result<()> {
         let part = prepare(world, &input, false)?;
         let opts = render_options(&walk, args.size);
         let start = Instant::now();
-        let out = frame(world, &part, &part.camera, &opts, args.distributed.tile)?;
+        let out = frame(
+            world,
+            &part,
+            &part.setup.camera,
+            &opts,
+            args.distributed.tile,
+        )?;
         let distributed_ms = start.elapsed().as_secs_f64() * 1e3;
         let Some(out) = out else { return Ok(()) };
         println!("{}", out.report.describe());
@@ -526,7 +372,7 @@ fn run_compare(args: &super::compare::CompareArgs) -> anyhow::Result<()> {
         let setup = scene::prepare(frame_args, &|line| println!("single process: {line}"))?;
         let start = Instant::now();
         let single =
-            tetray_raycast::render_scalar(setup.scene()?, &setup.camera, &setup.integrator, &opts)?;
+            tetray_engine::Engine::Cpu.render(&setup, &setup.camera, &walk, args.size, None)?;
         let single_ms = start.elapsed().as_secs_f64() * 1e3;
         let json = difference(
             &out.image,
@@ -570,9 +416,9 @@ fn difference(
     }
     CompareJson {
         ranks,
-        mesh: part.name.clone(),
+        mesh: part.setup.name().to_string(),
         size: format!("{}x{}", args.size.0, args.size.1),
-        integrator: part.method.name(),
+        integrator: part.setup.method.name(),
         max_abs_error: max,
         mean_abs_error: sum / a.rgba.len().max(1) as f64,
         pixels_over_1e5: over,

@@ -11,10 +11,8 @@ mod generate_grid;
 mod info;
 mod psi;
 mod render;
-mod renderer;
 mod scene;
 mod segment;
-mod shear_warp;
 mod study;
 mod view;
 

@@ -17,7 +17,7 @@ pub struct PsiArgs {
     #[arg(long, value_name = "G", value_parser = parse_unit_interval, allow_hyphen_values = true)]
     pub gamma_f: f32,
     /// Table nodes per axis.
-    #[arg(long, value_name = "N", default_value_t = 1024)]
+    #[arg(long, value_name = "N", default_value_t = tetray_core::defaults::PSI_TABLE_SIZE)]
     pub size: usize,
 }
 

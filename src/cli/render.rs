@@ -9,8 +9,8 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use tetray_core::{Image, WalkCounters};
 
 use super::args::RenderArgs;
-use super::renderer::{Engine, FrameStats};
 use super::scene;
+use tetray_engine::{Engine, FrameStats};
 
 /// Renders slower than this get a progress bar (on a terminal).
 const PROGRESS_AFTER: Duration = Duration::from_millis(500);

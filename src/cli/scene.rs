@@ -1,23 +1,20 @@
-//! From command-line options to what the renderers need: the loaded mesh,
-//! the scene (topology, boundary BVH, active scalar), the integrator and the
-//! camera. Shared by `render`, `bench` and `compare`; `info` uses the loader
-//! only. The work is `tetray-frame`'s (shared with the Python bindings):
-//! this maps the flags onto its options, prints its progress on stdout (or
-//! where `log` says) and its warnings on stderr. With `--renderer
-//! shear-warp` the file is read as its regular grid alone instead
-//! (`tetray_frame::shear_warp::prepare_grid`).
+//! From command-line flags to the engine's options, and the engine's
+//! progress on the terminal: `render`, `bench`, `compare`, `view` and `info`
+//! all make their frames (or load their mesh) through `tetray_engine`,
+//! printing its progress on stdout (or where `log` says) and its warnings
+//! on stderr.
 
 use anyhow::Context;
 
-pub use tetray_frame::{plural, MeshInput, Setup};
+pub use tetray_engine::{plural, MeshInput, Setup};
 
-use super::args::{CameraArgs, IntegratorArgs, MeshArgs, RendererArg, WalkArgs};
+use super::args::{CameraArgs, IntegratorArgs, MeshArgs, WalkArgs};
 
-/// Loads the mesh the options name, or the embedded default, and gives
-/// back what the allocator kept of the load's temporaries (for commands
-/// that go on without building a scene from them: `info`, `view`, MPI).
+/// Loads the mesh the flags name, or the embedded default, and gives back
+/// what the allocator kept of the load's temporaries (for commands that go
+/// on without building a scene from it: `info`, MPI).
 pub fn load_mesh(args: &MeshArgs) -> anyhow::Result<MeshInput> {
-    let input = tetray_frame::load_mesh(&args.options());
+    let input = tetray_engine::load(args.source()?);
     crate::ALLOCATOR.release();
     Ok(input?)
 }
@@ -33,14 +30,15 @@ pub struct FrameArgs<'a> {
 }
 
 impl FrameArgs<'_> {
-    /// The flags as the frame library's options (`tf_text`: the `--tf`
-    /// file's content).
-    pub fn options(&self, tf_text: Option<String>) -> tetray_frame::FrameOptions {
-        tetray_frame::FrameOptions {
+    /// The flags as the engine's options (`tf_text`: the `--tf` file's
+    /// content), for the renderer `--renderer` names.
+    pub fn options(&self, tf_text: Option<String>) -> tetray_engine::FrameOptions {
+        tetray_engine::FrameOptions {
             integrator: self.integrator.choice(tf_text),
             camera: self.camera.options(),
             bvh_preset: self.walk.bvh_preset,
             size: self.size,
+            representation: tetray_engine::Representation::for_renderer(self.walk.renderer.into()),
         }
     }
 }
@@ -50,32 +48,38 @@ pub fn warn(line: String) {
     eprintln!("warning: {line}");
 }
 
-/// Loads the mesh, builds the scene, the camera (before the integrator's
-/// tables, so a bad camera fails fast) and the integrator, reporting each
-/// step through `log` and warnings on stderr.
-pub fn prepare(frame: FrameArgs<'_>, log: &dyn Fn(String)) -> anyhow::Result<Setup> {
-    // Read before the (possibly long) mesh load, so a bad path fails at once.
-    let tf_text = match &frame.integrator.tf {
-        Some(path) => Some(
+/// The `--tf` file's content, read before the (possibly long) mesh load so
+/// a bad path fails at once.
+pub fn read_tf(integrator: &IntegratorArgs) -> anyhow::Result<Option<String>> {
+    integrator
+        .tf
+        .as_ref()
+        .map(|path| {
             std::fs::read_to_string(path)
-                .with_context(|| format!("--tf {}: cannot read", path.display()))?,
-        ),
-        None => None,
-    };
-    let options = frame.options(tf_text);
-    let log = tetray_frame::Log {
+                .with_context(|| format!("--tf {}: cannot read", path.display()))
+        })
+        .transpose()
+}
+
+/// Loads the mesh and makes the frame's setup through the engine, reporting
+/// each step through `log` and warnings on stderr.
+pub fn prepare(frame: FrameArgs<'_>, log: &dyn Fn(String)) -> anyhow::Result<Setup> {
+    let options = frame.options(read_tf(frame.integrator)?);
+    prepare_with(frame.mesh, &options, log)
+}
+
+/// [`prepare`] with the engine's options already made.
+pub fn prepare_with(
+    mesh: &MeshArgs,
+    options: &tetray_engine::FrameOptions,
+    log: &dyn Fn(String),
+) -> anyhow::Result<Setup> {
+    let log = tetray_engine::Log {
         info: log,
         warn: &warn,
     };
-    if frame.walk.renderer == RendererArg::ShearWarp {
-        let mesh = frame.mesh.options();
-        return Ok(tetray_frame::shear_warp::prepare_grid(
-            &mesh, &options, log,
-        )?);
-    }
-    // The scene is built in the blocks the load freed; then they go back.
-    let input = tetray_frame::load_mesh(&frame.mesh.options())?;
-    let setup = tetray_frame::prepare(input, &options, log);
+    let setup = tetray_engine::prepare(mesh.source()?, options, log);
+    // The scene is built in the blocks the load freed; now they go back.
     crate::ALLOCATOR.release();
     Ok(setup?)
 }

@@ -1,11 +1,10 @@
 //! `tetray segment`: one ray segment with linear luminance and attenuation,
 //! integrated by any method, as JSON (for studying the methods).
 
-use anyhow::Context;
 use clap::Args;
 use glam::Vec3;
 use serde::Serialize;
-use tetray_integrate::{IntegratorOptions, Method, Model, ScalarIntegrator, SegmentParams};
+use tetray_integrate::{Method, Model, SegmentParams};
 
 use super::args::{parse_method, parse_non_negative, parse_positive, parse_rgb};
 
@@ -54,13 +53,13 @@ pub struct SegmentArgs {
     #[arg(long, value_name = "U", default_value_t = 1.0, value_parser = parse_positive, allow_hyphen_values = true)]
     pub unit_distance: f32,
     /// Psi table nodes per axis (ppi).
-    #[arg(long, value_name = "N", default_value_t = 1024)]
+    #[arg(long, value_name = "N", default_value_t = tetray_core::defaults::PSI_TABLE_SIZE)]
     pub psi_size: usize,
     /// Riemann-sum step. Default: D / 256.
     #[arg(long, value_name = "STEP", value_parser = parse_positive, allow_hyphen_values = true)]
     pub riemann_step: Option<f32>,
     /// Full pre-integration table nodes per axis (built for length D).
-    #[arg(long, value_name = "N", default_value_t = 256)]
+    #[arg(long, value_name = "N", default_value_t = tetray_core::defaults::PREINTEGRATION_TABLE_SIZE)]
     pub preintegration_size: usize,
 }
 
@@ -139,20 +138,13 @@ fn evaluate(args: &SegmentArgs, method: Method) -> anyhow::Result<SegmentJson> {
         tau_front: args.tau_f,
         length: args.length,
     };
-    // Tables and steps sized for this one segment; a zero length emits nothing.
-    let length_or_one = if args.length > 0.0 { args.length } else { 1.0 };
-    let options = IntegratorOptions {
+    let options = tetray_engine::SegmentOptions {
         unit_distance: args.unit_distance,
-        psi_table_size: args.psi_size,
-        riemann_step: args.riemann_step.unwrap_or(length_or_one / 256.0),
-        preintegration_table_size: args.preintegration_size,
-        preintegration_length: length_or_one,
-        ..IntegratorOptions::default()
+        psi_size: args.psi_size,
+        riemann_step: args.riemann_step,
+        preintegration_size: args.preintegration_size,
     };
-    let integrator = ScalarIntegrator::for_segment(method, &params, &options)
-        .with_context(|| format!("setting up the {method} integrator"))?;
-    // The knots put the back at scalar 0 and the front at scalar 1.
-    let light = integrator.integrate(1.0, 0.0, args.length);
+    let light = tetray_engine::segment(method, &params, &options)?;
     Ok(SegmentJson {
         method: method.name(),
         model: match method.model() {

@@ -2,19 +2,22 @@
 //! error and its summary ([`metrics`]), a FLIP-like perceptual error
 //! ([`flip`]), heat maps with colour bars ([`heatmap`]), a labelled
 //! side-by-side sheet ([`sheet`]) and the table of errors and speeds
-//! ([`report`]), written as PNG, JSON and Markdown.
+//! ([`report`]), written as PNG, JSON and Markdown; and [`run`], which
+//! renders the combinations to compare through the engine.
 
 pub mod flip;
 pub mod font;
 pub mod heatmap;
 pub mod metrics;
 pub mod report;
+mod run;
 pub mod sheet;
 
 use std::path::PathBuf;
 
 pub use metrics::{abs_error, ErrorStats, ONE_LEVEL};
 pub use report::{compare, Method, Report, Row, Speed};
+pub use run::{parse_spec, run, RunOptions, Spec};
 
 /// What can go wrong comparing images or writing the results.
 #[derive(Debug, thiserror::Error)]
@@ -42,4 +45,12 @@ pub enum CompareError {
     Raster(#[from] tetray_core::ImageError),
     #[error("serializing the table: {0}")]
     Json(#[from] serde_json::Error),
+    #[error(transparent)]
+    Engine(#[from] tetray_engine::EngineError),
+    #[error("{label}: rendering")]
+    Render {
+        label: String,
+        #[source]
+        source: tetray_engine::EngineError,
+    },
 }

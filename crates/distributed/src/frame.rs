@@ -6,6 +6,7 @@ use std::time::Instant;
 
 use mpi::traits::*;
 use tetray_core::{Camera, Image};
+use tetray_engine::Setup;
 use tetray_integrate::ScalarIntegrator;
 use tetray_mesh::TetMesh;
 use tetray_raycast::{render_scalar_fragments, RenderOptions};
@@ -85,6 +86,19 @@ pub struct DistributedFrame {
 /// still takes part in the exchange) into fragments, composited over all
 /// ranks of `comm` in tiles of `tile` pixels. `Some(frame)` on rank 0.
 /// Every rank must call it with the same camera, integrator and options.
+/// One frame of a rank's setup (made by [`crate::prepare_part`] or the in-situ
+/// entry points) from `camera`: [`render_distributed`] of its part.
+pub fn render_setup<C: Communicator>(
+    comm: &C,
+    setup: &Setup,
+    camera: &Camera,
+    opts: &RenderOptions,
+    tile: u32,
+) -> Result<Option<DistributedFrame>, DistributedError> {
+    let scene = setup.scene_arc().map(|s| &**s);
+    render_distributed(comm, scene, camera, &setup.integrator, opts, tile)
+}
+
 pub fn render_distributed<C: Communicator>(
     comm: &C,
     scene: Option<&Scene>,

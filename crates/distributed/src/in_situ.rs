@@ -2,17 +2,17 @@
 //! mesh as arrays (no file), on the simulation's own communicator, and
 //! gets the composited image back on rank 0.
 
-use glam::{DVec3, Vec3};
+use std::time::Duration;
+
+use glam::DVec3;
 use mpi::traits::*;
-use tetray_boundary_bvh::BuildPreset;
-use tetray_core::Camera;
-use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunction};
+use tetray_engine::{CameraOptions, Extent, FrameOptions, IntegratorChoice, Log, TfSource};
+use tetray_integrate::{Method, TransferFunction};
 use tetray_mesh::cells::{assemble_at, CellGrid, ReadOptions};
 use tetray_mesh::{centring_origin, finish, prepare, LoadedMesh, MeshRead, ScalarField, TetMesh};
 use tetray_raycast::RenderOptions;
-use tetray_scene::Scene;
 
-use crate::frame::{agree, render_distributed, DistributedFrame};
+use crate::frame::{agree, render_setup, DistributedFrame};
 use crate::layout::DEFAULT_TILE;
 use crate::transport::reduce_bounds;
 use crate::DistributedError;
@@ -102,7 +102,7 @@ pub fn render_in_situ<C: Communicator>(
     } else {
         Some(prepare(mesh)?)
     };
-    render_loaded(comm, loaded, FIELD, view)
+    render_loaded(comm, loaded, origin, FIELD, view)
 }
 
 /// One rank's part as VTK cells ([`CellGrid`]: f64 points, any cell type
@@ -139,69 +139,71 @@ pub fn render_in_situ_cells<C: Communicator>(
             ..MeshRead::default()
         })?)
     };
-    render_loaded(comm, loaded, field, view)
+    render_loaded(comm, loaded, origin, field, view)
 }
 
 /// The frame of this rank's loaded part (`None`: nothing), its points
-/// relative to the whole mesh's origin.
+/// relative to the whole mesh's origin `origin`.
 fn render_loaded<C: Communicator>(
     comm: &C,
     loaded: Option<LoadedMesh>,
+    origin: DVec3,
     field: &str,
     view: &InSituView,
 ) -> Result<Option<DistributedFrame>, DistributedError> {
-    let cells = loaded.as_ref().map_or(0, |l| l.mesh.tets.len());
+    let cells = loaded.as_ref().map_or(0, LoadedMesh::input_cells);
     let agreed = agree(comm, loaded.as_ref().map(|l| &l.mesh), cells, Some(field))?;
-    let scene = match loaded {
-        Some(l) => Some(Scene::new(
-            l.mesh,
-            l.topology,
-            field,
-            BuildPreset::default(),
-        )?),
-        None => None,
+    let summary = &agreed.summary;
+    let extent = Extent {
+        name: "in situ".into(),
+        origin,
+        bounds: summary.bounds,
+        field: field.to_string(),
+        range: agreed.range,
+        paraview_unit_distance: summary.paraview_unit_distance(),
+        mean_chord: summary.mean_chord(),
     };
-    let (lo, hi) = agreed.summary.bounds;
-    let camera = fit_camera(lo, hi, view)?;
-    let (s_lo, s_hi) = agreed.range;
-    let tf = view
-        .transfer_function
-        .clone()
-        .unwrap_or_else(|| TransferFunction::default_for_range(s_lo, s_hi));
-    let options = IntegratorOptions {
-        unit_distance: view
-            .unit_distance
-            .unwrap_or_else(|| agreed.summary.paraview_unit_distance()),
-        scalar_range: Some((s_lo, s_hi)),
-        ..IntegratorOptions::default()
-    };
-    let integrator = ScalarIntegrator::new(view.method, &tf, &options)?;
+    let options = view.frame_options();
+    let setup =
+        tetray_engine::prepare_part(loaded, extent, &options, Log::quiet(), Duration::ZERO)?;
     let opts = RenderOptions {
         width: view.width,
         height: view.height,
         threads: view.threads,
         ..RenderOptions::default()
     };
-    render_distributed(
-        comm,
-        scene.as_ref(),
-        &camera,
-        &integrator,
-        &opts,
-        DEFAULT_TILE,
-    )
+    render_setup(comm, &setup, &setup.camera, &opts, DEFAULT_TILE)
 }
 
-/// VTK's ResetCamera fit of `lo..hi`, then azimuth, elevation and
-/// OrthogonalizeViewUp.
-pub fn fit_camera(lo: Vec3, hi: Vec3, view: &InSituView) -> Result<Camera, DistributedError> {
-    let mut camera = Camera {
-        view_angle: view.view_angle,
-        ..Camera::default()
-    };
-    camera.reset(lo, hi, view.width as f32 / view.height.max(1) as f32)?;
-    camera.azimuth(view.azimuth)?;
-    camera.elevation(view.elevation)?;
-    camera.orthogonalize_view_up()?;
-    Ok(camera)
+impl InSituView {
+    /// The engine's options of this view: VTK's ResetCamera fit of the
+    /// whole mesh's bounds turned by the azimuth and elevation, the
+    /// method, the transfer function (default: the engine's over the whole
+    /// field's range) and the unit distance (default: ParaView's, of the
+    /// whole mesh).
+    pub fn frame_options(&self) -> FrameOptions {
+        let tf = match &self.transfer_function {
+            Some(tf) => TfSource::Points {
+                color: tf.color_points().to_vec(),
+                opacity: tf.opacity_points().to_vec(),
+            },
+            None => TfSource::Default,
+        };
+        FrameOptions {
+            integrator: IntegratorChoice {
+                method: self.method,
+                tf,
+                unit_distance: self.unit_distance,
+                ..IntegratorChoice::default()
+            },
+            camera: CameraOptions {
+                view_angle: self.view_angle,
+                azimuth: Some(self.azimuth),
+                elevation: Some(self.elevation),
+                ..CameraOptions::default()
+            },
+            size: (self.width, self.height),
+            ..FrameOptions::default()
+        }
+    }
 }

@@ -1,5 +1,5 @@
 //! Rendering a mesh split over processes, exactly, by compositing ray
-//! fragments (issue 13).
+//! fragments.
 //!
 //! Each process (rank) holds a part of the mesh. It casts every pixel's
 //! ray through its part and keeps one fragment per interval the ray
@@ -17,8 +17,10 @@
 //! - [`partition`]: which pieces or cells a rank renders;
 //! - [`report`]: per-rank costs of a frame;
 //! - with the feature `mpi`: `transport` (the exchange, gather and
-//!   reductions over rsmpi), `frame` (agreeing and rendering one frame)
-//!   and `in_situ` (a simulation's arrays on its own communicator).
+//!   reductions over rsmpi), `frame` (agreeing and rendering one frame),
+//!   `part` (a rank's part of a file made ready through the engine, as a
+//!   single process would make the whole) and `in_situ` (a simulation's
+//!   arrays on its own communicator).
 
 pub mod composite;
 pub mod layout;
@@ -31,6 +33,8 @@ pub mod frame;
 #[cfg(feature = "mpi")]
 pub mod in_situ;
 #[cfg(feature = "mpi")]
+pub mod part;
+#[cfg(feature = "mpi")]
 pub mod transport;
 
 pub use composite::{assemble, blend, bucket_by_owner, composite_owned, Buckets, OwnedPixels};
@@ -41,11 +45,13 @@ pub use summary::{MeshSummary, Reduce};
 pub use tetray_raycast::Fragment;
 
 #[cfg(feature = "mpi")]
-pub use frame::{agree, render_distributed, Agreed, DistributedFrame};
+pub use frame::{agree, render_distributed, render_setup, Agreed, DistributedFrame};
 #[cfg(feature = "mpi")]
 pub use in_situ::{render_in_situ, render_in_situ_cells, InSituView, RankMesh};
 #[cfg(feature = "mpi")]
 pub use mpi;
+#[cfg(feature = "mpi")]
+pub use part::{prepare_part, Part};
 
 /// Why a distributed frame could not be made.
 #[derive(Debug, thiserror::Error)]
@@ -66,6 +72,10 @@ pub enum DistributedError {
     Cells(#[from] tetray_mesh::cells::CellError),
     #[error(transparent)]
     Integrator(#[from] tetray_integrate::IntegrateError),
+    #[error(transparent)]
+    Engine(#[from] tetray_engine::EngineError),
+    #[error(transparent)]
+    Io(#[from] tetray_io::IoError),
     #[error("{0} values are too many for one MPI message (counts are 32-bit)")]
     TooLarge(usize),
     #[error("no rank has any point: nothing to render")]

@@ -27,13 +27,17 @@ pub enum IoError {
     #[error(transparent)]
     Exodus(#[from] ExodusError),
 
-    /// The file name does not say which reader to use.
+    /// Neither the file's name nor its content says which reader to use.
     #[error(
-        "{file}: unknown mesh format: expected .vtk, .vtu, .vts, .vtr, .vti, .pvtu, \
-         .pvts, .pvtr, .pvti, .vtm, an Exodus II file (.e, .exo, .ex2, .g, .gen) or a \
-         PLOT3D grid (name ending in xyz.bin, .xyz or .x)"
+        "{file}: unknown mesh format ({seen}): expected .vtk, .vtu, .vts, .vtr, .vti, \
+         .pvtu, .pvts, .pvtr, .pvti, .vtm, an Exodus II file (.e, .exo, .ex2, .exii, .g, \
+         .gen) or a PLOT3D grid (name ending in xyz.bin, .xyz or .x)"
     )]
-    UnknownFormat { file: String },
+    UnknownFormat {
+        file: String,
+        /// What the file starts with.
+        seen: String,
+    },
 
     /// A PLOT3D header that fits no layout this reader knows.
     #[error("{file}: PLOT3D {what} file: {message}")]

@@ -3,7 +3,9 @@
 //! cells with their VTK type, fields, pieces and blocks) and through its
 //! one assembly step into tetrahedra; and [`load`], which picks the reader
 //! by the file's name and finishes the mesh ([`tetray_mesh::finish`]:
-//! orient, validate, topology), returning a [`LoadedMesh`].
+//! orient, validate, topology), returning a [`LoadedMesh`]; [`probe`]
+//! tells a file's format (by name, else by content) and whether it is image
+//! data before anything is read.
 //!
 //! - [`vtk`]: legacy `.vtk`, serial XML (`.vtu`, `.vts`, `.vtr`, `.vti`,
 //!   one DataArray decoder), parallel XML (`.pvt*`) and multi-block `.vtm`;
@@ -18,6 +20,7 @@
 
 mod error;
 mod load;
+mod probe;
 
 pub mod exodus;
 pub mod generate;
@@ -27,8 +30,10 @@ pub mod vtk;
 pub use error::IoError;
 pub use exodus::{read_exodus_bytes, read_exodus_file, ExodusError, ExodusOptions, ExodusRead};
 pub use load::{
-    load, load_grid, load_piece_subset, load_plot3d_bytes, plot3d_q_sibling, LoadOptions,
+    load, load_grid, load_image_data, load_piece_subset, load_plot3d_bytes, plot3d_q_sibling,
+    LoadOptions,
 };
 pub use plot3d::{read_plot3d_bytes, read_plot3d_files, Plot3dRead};
+pub use probe::{probe, DataKind, Probe};
 pub use tetray_mesh::{ElementBlock, LoadReport, LoadedMesh};
 pub use vtk::{read_image_grid, ImageGrid, VtkError};

@@ -11,6 +11,7 @@ use tetray_mesh::{finish, LoadedMesh, MeshRead};
 
 use crate::exodus::{read_exodus_file, ExodusOptions, ExodusRead};
 use crate::plot3d::{read_plot3d_bytes, read_plot3d_files, Plot3dRead};
+use crate::probe::{format_of, probe, Format};
 use crate::{vtk, IoError};
 
 /// Options of [`load`].
@@ -33,39 +34,6 @@ pub struct LoadOptions {
     pub linearize: vtk::Linearize,
 }
 
-/// The file formats [`load`] recognises by name.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Format {
-    Legacy,
-    /// Serial XML: `.vtu`, `.vts`, `.vtr`, `.vti`.
-    Xml,
-    /// `.pvtu`, `.pvts`, `.pvtr`, `.pvti`.
-    Parallel,
-    MultiBlock,
-    Plot3d,
-    Exodus,
-}
-
-fn format_of(path: &Path) -> Option<Format> {
-    let name = path.file_name()?.to_string_lossy().to_lowercase();
-    let ext = name.rsplit_once('.').map_or("", |(_, e)| e);
-    if ext == "vtk" {
-        Some(Format::Legacy)
-    } else if ["vtu", "vts", "vtr", "vti"].contains(&ext) {
-        Some(Format::Xml)
-    } else if ["pvtu", "pvts", "pvtr", "pvti"].contains(&ext) {
-        Some(Format::Parallel)
-    } else if ext == "vtm" {
-        Some(Format::MultiBlock)
-    } else if ["e", "exo", "ex2", "g", "gen"].contains(&ext) {
-        Some(Format::Exodus)
-    } else if name.ends_with("xyz.bin") || name.ends_with(".xyz") || name.ends_with(".x") {
-        Some(Format::Plot3d)
-    } else {
-        None
-    }
-}
-
 /// The default solution file of a PLOT3D grid: the last `xyz` of the file
 /// name (any case) replaced by `q`, or a final `.x` by `.q`.
 pub fn plot3d_q_sibling(xyz: &Path) -> Option<PathBuf> {
@@ -81,19 +49,24 @@ pub fn plot3d_q_sibling(xyz: &Path) -> Option<PathBuf> {
     Some(xyz.with_file_name(q_name))
 }
 
-/// Reads the mesh at `path` (chosen by name, any case: `.vtk` (any dataset
+/// Reads the mesh at `path` (the reader chosen by name, any case, or where
+/// the name says nothing by the file's content, see [`probe`]: `.vtk` (any dataset
 /// type its DATASET line names), `.vtu`, `.vts`, `.vtr`, `.vti`, their
 /// parallel forms `.pvt*`, multi-block `.vtm`, an Exodus II file `.e`,
-/// `.exo`, `.ex2`, `.g`, `.gen`, or a PLOT3D grid `*xyz.bin`, `*.xyz`,
+/// `.exo`, `.ex2`, `.exii`, `.g`, `.gen`, or a PLOT3D grid `*xyz.bin`, `*.xyz`,
 /// `*.x`), then orients, validates and builds the topology (see
 /// [`tetray_mesh::prepare`]).
 ///
 /// # Errors
-/// [`IoError::UnknownFormat`] for an unrecognised name, the reader's
+/// [`IoError::UnknownFormat`] for a file neither its name nor its content
+/// says the format of, the reader's
 /// errors, and validation errors wrapped in [`tetray_mesh::MeshError::InFile`].
 pub fn load(path: &Path, opts: &LoadOptions) -> Result<LoadedMesh, IoError> {
     let file = path.display().to_string();
-    let format = format_of(path).ok_or_else(|| IoError::UnknownFormat { file: file.clone() })?;
+    let format = match format_of(path) {
+        Some(format) => format,
+        None => probe(path)?.format,
+    };
     let vtk_opts = vtk::ReadOptions {
         linearize: opts.linearize,
     };
@@ -288,20 +261,8 @@ mod tests {
     use super::*;
 
     #[test]
-    fn formats_and_q_siblings() {
+    fn q_siblings() {
         let p = Path::new;
-        assert_eq!(format_of(p("a/b.VTK")), Some(Format::Legacy));
-        assert_eq!(format_of(p("b.vtu")), Some(Format::Xml));
-        assert_eq!(format_of(p("b.VTI")), Some(Format::Xml));
-        assert_eq!(format_of(p("d/b.pvtu")), Some(Format::Parallel));
-        assert_eq!(format_of(p("b.vtm")), Some(Format::MultiBlock));
-        assert_eq!(format_of(p("postxyz.bin")), Some(Format::Plot3d));
-        assert_eq!(format_of(p("grid.x")), Some(Format::Plot3d));
-        assert_eq!(format_of(p("grid.obj")), None);
-        for name in ["a.e", "a.EXO", "disk_out_ref.ex2", "mesh.g", "mesh.Gen"] {
-            assert_eq!(format_of(p(name)), Some(Format::Exodus), "{name}");
-        }
-        assert_eq!(format_of(p("a.e-s")), None);
         assert_eq!(
             plot3d_q_sibling(p("d/postxyz.bin")),
             Some(PathBuf::from("d/postq.bin"))
@@ -312,4 +273,28 @@ mod tests {
         );
         assert_eq!(plot3d_q_sibling(p("grid.x")), Some(PathBuf::from("grid.q")));
     }
+}
+
+/// Reads an image-data file (`.vti`, legacy STRUCTURED_POINTS) once as
+/// both what it is: the mesh [`load`] makes of it, and its regular grid.
+///
+/// # Errors
+/// As [`load`], and [`vtk::VtkError::Invalid`] for a file that is not a
+/// single-piece axis-aligned image.
+pub fn load_image_data(
+    path: &Path,
+    opts: &LoadOptions,
+) -> Result<(LoadedMesh, vtk::ImageGrid), IoError> {
+    let file = path.display().to_string();
+    let vtk_opts = vtk::ReadOptions {
+        linearize: opts.linearize,
+    };
+    let (read, image) = vtk::read_image_data_with(path, &vtk_opts)?;
+    let format = if read.dataset == "ImageData" && format_of(path) == Some(Format::Xml) {
+        "VTK XML ImageData"
+    } else {
+        "VTK legacy STRUCTURED_POINTS"
+    };
+    let mesh = finish(from_vtk(read, format)).map_err(|e| e.in_file(&file))?;
+    Ok((mesh, image))
 }

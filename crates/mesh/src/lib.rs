@@ -46,7 +46,8 @@ pub use geometry::{
 pub use info::{FieldRange, MeshSummary};
 pub use loaded::{finish, prepare, ElementBlock, LoadReport, LoadedMesh, MeshRead};
 pub use scale::{
-    default_field, mean_chord, mean_tet_chord, paraview_unit_distance, tet_chord_sum, value_range,
+    default_field, default_field_of, mean_chord, mean_tet_chord, paraview_unit_distance,
+    tet_chord_sum, value_range,
 };
 pub use search::{first_index, first_position};
 pub use topology::{boundary_faces_of, MAX_TETS};

@@ -90,14 +90,16 @@ pub fn value_range(values: &[f32]) -> (f32, f32) {
 /// (the readers put point fields before cell fields averaged to points,
 /// and vectors as magnitudes), else the first; `None` without fields.
 pub fn default_field(mesh: &TetMesh) -> Option<&crate::ScalarField> {
+    default_field_of(&mesh.fields)
+}
+
+/// [`default_field`] among `fields` (a regular grid's, say).
+pub fn default_field_of(fields: &[crate::ScalarField]) -> Option<&crate::ScalarField> {
     let varies = |f: &&crate::ScalarField| {
         let (lo, hi) = value_range(&f.values);
         lo < hi
     };
-    mesh.fields
-        .iter()
-        .find(varies)
-        .or_else(|| mesh.fields.first())
+    fields.iter().find(varies).or_else(|| fields.first())
 }
 
 #[cfg(test)]

@@ -1,15 +1,11 @@
 //! `segment`, `psi` and `compare`: the CLI's commands of the same names,
 //! returning Python values instead of printing JSON.
 
-use std::time::Duration;
-
 use glam::Vec3;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use tetray_frame::{Engine, RendererChoice, Setup, WalkOptions};
-use tetray_integrate::{psi as psi_f64, IntegratorOptions, Method, Model, PsiTable};
-use tetray_integrate::{ScalarIntegrator, SegmentParams};
-use tetray_project::SortKind;
+use tetray_engine::Setup;
+use tetray_integrate::{psi as psi_f64, Method, Model, PsiTable, SegmentParams};
 
 use crate::{guard, to_py, value_error};
 
@@ -79,22 +75,13 @@ pub fn segment<'py>(
             "riemann_step {step} must be finite and > 0"
         )));
     }
-    // Tables and steps sized for this one segment, as the CLI sizes them.
-    let length_or_one = if length > 0.0 { length } else { 1.0 };
-    let options = IntegratorOptions {
+    let options = tetray_engine::SegmentOptions {
         unit_distance,
-        psi_table_size: psi_size,
-        riemann_step: riemann_step.unwrap_or(length_or_one / 256.0),
-        preintegration_table_size: preintegration_size,
-        preintegration_length: length_or_one,
-        ..IntegratorOptions::default()
+        psi_size,
+        riemann_step,
+        preintegration_size,
     };
-    let light = guard(|| {
-        let integrator = ScalarIntegrator::for_segment(method, &params, &options)
-            .map_err(|e| value_error(format!("setting up the {method} integrator: {e}")))?;
-        // The knots put the back at scalar 0 and the front at scalar 1.
-        Ok(integrator.integrate(1.0, 0.0, length))
-    })?;
+    let light = guard(|| tetray_engine::segment(method, &params, &options).map_err(to_py))?;
     let d = PyDict::new(py);
     d.set_item("method", method.name())?;
     d.set_item(
@@ -159,8 +146,8 @@ pub type Spec = (String, Option<String>, Option<String>);
 
 /// Renders the CPU f64 reference and each spec from the setup's camera
 /// (median of `frames` timed frames, GPU renderers warmed up first), as
-/// `tetray compare` does, and compares them. The setup's integrator is
-/// left as it was.
+/// `tetray compare` does, through the same code, and compares them. The
+/// setup's integrator is left as it was.
 pub fn compare(
     setup: &mut Setup,
     specs: &[Spec],
@@ -171,103 +158,37 @@ pub fn compare(
     if frames == 0 {
         return Err(value_error("frames must be at least 1"));
     }
-    let original = setup.method;
-    let mut parsed = Vec::with_capacity(specs.len());
-    for (renderer, integrator, sort) in specs {
-        let renderer: RendererChoice = renderer.parse().map_err(value_error)?;
-        if matches!(renderer, RendererChoice::Auto | RendererChoice::ShearWarp) {
-            return Err(value_error(format!(
-                "compare: the renderer must be cpu, gpu or project, not {}",
-                renderer.name()
-            )));
-        }
-        let m = integrator.as_deref().map(method).transpose()?;
-        let sort = match sort.as_deref() {
-            None => None,
-            Some(_) if renderer != RendererChoice::Project => {
-                return Err(value_error(
-                    "compare: a sort is for the project renderer only",
-                ))
-            }
-            Some(s) => Some(
-                s.parse::<SortKind>()
-                    .map_err(|e| value_error(e.to_string()))?,
-            ),
-        };
-        parsed.push((renderer, m.unwrap_or(original), sort));
-    }
-    let result = (|| {
-        let reference = render_one(
-            setup,
-            (RendererChoice::Cpu, Method::Reference, None),
-            frames,
-            size,
-            log,
-        )?;
-        let methods = parsed
-            .iter()
-            .map(|&spec| render_one(setup, spec, frames, size, log))
-            .collect::<PyResult<Vec<_>>>()?;
-        let title = format!("{} ({} tetrahedra)", setup.mesh_name, setup.tet_count());
-        tetray_compare::compare(&title, reference, methods).map_err(|e| value_error(e.to_string()))
-    })();
-    setup.use_method(original).map_err(to_py)?;
-    result
+    let specs = specs
+        .iter()
+        .map(|(renderer, integrator, sort)| {
+            let text = [Some(renderer), integrator.as_ref(), sort.as_ref()]
+                .into_iter()
+                .flatten()
+                .map(String::as_str)
+                .collect::<Vec<_>>()
+                .join(":");
+            tetray_compare::parse_spec(&text).map_err(|e| value_error(format!("compare: {e}")))
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    let options = tetray_compare::RunOptions {
+        size,
+        frames,
+        adaptive_tf: true,
+    };
+    tetray_compare::run(setup, &specs, options, log).map_err(|e| match e {
+        tetray_compare::CompareError::Engine(e) => to_py(e),
+        other => value_error(error_chain(&other)),
+    })
 }
 
-fn render_one(
-    setup: &mut Setup,
-    (renderer, method, sort): (RendererChoice, Method, Option<SortKind>),
-    frames: u32,
-    size: (u32, u32),
-    log: &dyn Fn(String),
-) -> PyResult<tetray_compare::Method> {
-    setup.use_method(method).map_err(to_py)?;
-    let setup: &Setup = setup;
-    // No early termination: every method integrates every ray to its end,
-    // as the reference does.
-    let walk = WalkOptions {
-        sort: sort.unwrap_or(SortKind::Mpvonc),
-        ..WalkOptions::default()
-    };
-    let engine = Engine::new(renderer, setup, log).map_err(to_py)?;
-    let label = match renderer {
-        RendererChoice::Project => format!("project {method} {}", walk.sort),
-        _ => format!("{} {method}", engine.name()),
-    };
-    let render = || {
-        engine
-            .render(setup, &setup.camera, walk, size, None)
-            .map_err(to_py)
-    };
-    if !matches!(engine, Engine::Cpu) {
-        render()?;
+/// An error and its sources on one line.
+fn error_chain(e: &dyn std::error::Error) -> String {
+    let mut text = e.to_string();
+    let mut source = e.source();
+    while let Some(s) = source {
+        text.push_str(": ");
+        text.push_str(&s.to_string());
+        source = s.source();
     }
-    let mut frames: Vec<tetray_frame::Frame> =
-        (0..frames).map(|_| render()).collect::<PyResult<_>>()?;
-    frames.sort_by_key(|f| f.stats.elapsed);
-    let frame = frames.swap_remove(frames.len() / 2);
-    let seconds = frame
-        .stats
-        .elapsed
-        .max(Duration::from_nanos(1))
-        .as_secs_f64();
-    log(format!(
-        "{label}: {:.1} ms on {}",
-        seconds * 1e3,
-        engine.adapter()
-    ));
-    Ok(tetray_compare::Method {
-        label,
-        renderer: engine.name().to_string(),
-        integrator: method.name().to_string(),
-        sort: (renderer == RendererChoice::Project).then(|| walk.sort.name().to_string()),
-        adaptive_tf: frame.stats.project.map(|p| p.adaptive_tf),
-        speed: tetray_compare::Speed {
-            ms_per_frame: seconds * 1e3,
-            tets_per_s: setup.tet_count() as f64 / seconds,
-            segments_per_s: frame.stats.counters.segments as f64 / seconds,
-        },
-        image: frame.image,
-    })
+    text
 }

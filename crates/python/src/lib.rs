@@ -1,13 +1,12 @@
 //! The native half of the `tetray` Python package (`tetray._native`):
-//! conversion of NumPy arrays and Python values into `tetray-frame`'s
-//! options and a [`tetray_mesh::cells::CellGrid`], and of images back into
-//! NumPy arrays. Everything else (the mesh assembly, the scene, camera,
-//! transfer function and renderers) is the CLI's code, through
-//! `tetray-frame`, so a grid from Python and the same grid in a `.vtu`
-//! give the same image.
+//! conversion of NumPy arrays and Python values into the engine's options
+//! and a [`tetray_mesh::cells::CellGrid`], and of images back into NumPy
+//! arrays. Everything else (the mesh assembly, the scene, camera, transfer
+//! function, renderers, `compare`) is the engine's, as for the CLI, so a
+//! grid from Python and the same grid in a `.vtu` give the same image.
 //!
-//! Errors: a [`FrameError`] about a file becomes `OSError`, any other
-//! `ValueError`, with the CLI's message. Loads and renders run with the
+//! Errors: an [`EngineError`] about a file becomes `OSError`, any other
+//! `ValueError`, with the engine's message. Loads and renders run with the
 //! GIL released ([`Python::detach`]) and under [`guard`], which turns a
 //! panic into a `RuntimeError` rather than unwinding into the interpreter.
 
@@ -19,10 +18,10 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 
 use pyo3::exceptions::{PyOSError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
-use tetray_frame::FrameError;
+use tetray_engine::EngineError;
 
-/// A [`FrameError`] as the Python exception the package documents.
-pub(crate) fn to_py(e: FrameError) -> PyErr {
+/// A [`EngineError`] as the Python exception the package documents.
+pub(crate) fn to_py(e: EngineError) -> PyErr {
     if e.is_io() {
         PyOSError::new_err(e.chain())
     } else {
@@ -60,6 +59,6 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(extras::segment, m)?)?;
     m.add_function(wrap_pyfunction!(extras::psi, m)?)?;
     m.add_function(wrap_pyfunction!(extras::methods, m)?)?;
-    m.add("DEFAULT_VIEW", tetray_frame::DEFAULT_VIEW)?;
+    m.add("DEFAULT_VIEW", tetray_engine::DEFAULT_VIEW)?;
     Ok(())
 }

@@ -7,9 +7,9 @@ use glam::{DVec3, Vec3};
 use numpy::{IntoPyArray, PyArray3, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
-use tetray_frame::{
-    CameraOptions, Engine, FrameOptions, IntegratorChoice, Log, MeshInput, MeshOptions,
-    RendererChoice, Setup, TfSource, WalkOptions,
+use tetray_engine::{
+    CameraOptions, Engine, FrameOptions, IntegratorChoice, Log, MeshInput, RendererChoice, Setup,
+    Source, TfSource, WalkOptions,
 };
 use tetray_integrate::{ColorPoint, Method, OpacityMode, OpacityPoint};
 use tetray_mesh::MeshSummary;
@@ -169,6 +169,7 @@ impl Scene {
             camera: camera.clone(),
             bvh_preset: None,
             size,
+            representation: tetray_engine::Representation::Tetrahedra,
         };
         let walk = WalkOptions {
             early_termination,
@@ -177,16 +178,23 @@ impl Scene {
         };
         let source = if let Ok(grid) = mesh.cast::<Grid>() {
             let grid = grid.get();
-            Source::Grid(Box::new(grid.grid.clone()), grid.name.clone())
-        } else if let Ok(path) = mesh.extract::<std::path::PathBuf>() {
-            Source::File(MeshOptions {
-                mesh: Some(path),
-                q,
-                time_step,
-                time,
-                block,
+            Source::Arrays {
+                grid: Box::new(grid.grid.clone()),
+                name: grid.name.clone(),
+                format: "Python arrays",
                 linearize,
-            })
+            }
+        } else if let Ok(path) = mesh.extract::<std::path::PathBuf>() {
+            Source::File {
+                path,
+                options: tetray_io::LoadOptions {
+                    plot3d_q: q,
+                    time_step,
+                    time,
+                    block,
+                    linearize,
+                },
+            }
         } else {
             return Err(value_error("mesh must be a path or a tetray._native.Grid"));
         };
@@ -199,15 +207,10 @@ impl Scene {
                     info: &info,
                     warn: &warn,
                 };
-                let input = match source {
-                    Source::Grid(grid, name) => {
-                        tetray_frame::load_grid(*grid, &name, "Python arrays", linearize)
-                    }
-                    Source::File(options) => tetray_frame::load_mesh(&options),
-                }
-                .map_err(to_py)?;
+                let input = tetray_engine::load(source).map_err(to_py)?;
                 let info_of = info_of(&input);
-                let setup = tetray_frame::prepare(input, &options, log).map_err(to_py)?;
+                let setup =
+                    tetray_engine::prepare_mesh(input, None, &options, log).map_err(to_py)?;
                 let engine = Engine::new(renderer, &setup, &info).map_err(to_py)?;
                 Ok((setup, engine, info_of))
             })
@@ -350,7 +353,7 @@ impl Scene {
     #[getter]
     fn camera<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let setup = self.setup.read().expect("setup lock");
-        let (c, o) = (&setup.camera, setup.origin);
+        let (c, o) = (&setup.camera, setup.extent.origin);
         let d = PyDict::new(py);
         d.set_item("position", (o + c.position.as_dvec3()).to_array())?;
         d.set_item("focal_point", (o + c.focal_point.as_dvec3()).to_array())?;
@@ -414,11 +417,6 @@ fn image_array<'py>(
 
 /// Colour points (s, r, g, b) and opacity points (s, alpha) over [0, 1].
 type TfPoints = (Vec<(f32, f32, f32, f32)>, Vec<(f32, f32)>);
-
-enum Source {
-    Grid(Box<tetray_mesh::cells::CellGrid>, String),
-    File(MeshOptions),
-}
 
 fn info_of(input: &MeshInput) -> Info {
     Info {

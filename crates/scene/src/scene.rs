@@ -209,6 +209,39 @@ impl Scene {
         Scene::new(loaded.mesh, loaded.topology, field, preset)
     }
 
+    /// The same scene with another point field of its mesh active: the
+    /// topology, the BVH and the walk records are kept, nothing is rebuilt
+    /// (the fields were renumbered with the points). Errors name the
+    /// input's point ids.
+    pub fn with_field(&self, field: &str) -> Result<Scene, SceneError> {
+        let scalar = active_field(&self.mesh, field).map_err(|e| match e {
+            SceneError::NonFiniteScalar { name, point, value } => SceneError::NonFiniteScalar {
+                name,
+                point: self.input_point(point as u32) as usize,
+                value,
+            },
+            other => other,
+        })?;
+        let points = self
+            .mesh
+            .points
+            .iter()
+            .zip(&scalar)
+            .map(|(p, &s)| [p.x, p.y, p.z, s])
+            .collect();
+        Ok(Scene {
+            mesh: self.mesh.clone(),
+            topology: self.topology.clone(),
+            bvh: self.bvh.clone(),
+            field: field.to_string(),
+            scalar,
+            walk: self.walk.clone(),
+            points,
+            bounds: self.bounds,
+            order: self.order.clone(),
+        })
+    }
+
     /// The renumbering applied to the input (`None`: input order).
     pub fn reorder(&self) -> Option<&Reorder> {
         self.order.as_ref()
@@ -429,4 +462,33 @@ fn check_boundary_faces(mesh: &TetMesh, topology: &Topology) -> Result<(), Scene
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use tetray_mesh::synthetic::{add_field, jittered_box, CellSplit, ScalarSpec};
+
+    /// Switching the active field gives the scene a fresh build would.
+    #[test]
+    fn another_field_is_the_scene_built_for_it() {
+        let mut mesh =
+            jittered_box(Vec3::ZERO, Vec3::ONE, [3, 2, 2], 0.2, 7, CellSplit::Six).expect("a mesh");
+        let linear = |offset, gradient| ScalarSpec::Linear { offset, gradient };
+        add_field(&mut mesh, "x", linear(0.0, Vec3::X));
+        add_field(&mut mesh, "yz", linear(0.5, Vec3::new(0.0, 2.0, -1.0)));
+        let topology = Topology::build(&mesh).expect("topology");
+        let x =
+            Scene::new(mesh.clone(), topology.clone(), "x", BuildPreset::default()).expect("scene");
+        let yz = Scene::new(mesh, topology, "yz", BuildPreset::default()).expect("scene");
+        let switched = x.with_field("yz").expect("the field exists");
+        assert_eq!(switched.field, "yz");
+        assert_eq!(switched.scalar, yz.scalar);
+        assert_eq!(switched.point_records(), yz.point_records());
+        assert_eq!(switched.walk_records(), yz.walk_records());
+        assert!(matches!(
+            x.with_field("nope"),
+            Err(SceneError::UnknownField { .. })
+        ));
+    }
 }

@@ -42,6 +42,8 @@ pub enum StudyError {
     Gpu(#[from] tetray_gpu::GpuError),
     #[error(transparent)]
     Project(#[from] tetray_project::ProjectError),
+    #[error(transparent)]
+    Engine(#[from] tetray_engine::EngineError),
     #[error("{what} on the GPU: {message}")]
     GpuKernel { what: &'static str, message: String },
 }

@@ -12,10 +12,9 @@ use std::time::{Duration, Instant};
 
 use egui::{Event, Modifiers, PointerButton, Pos2};
 use egui_kittest::Harness;
-use tetray_viewer::{Dataset, ViewerApp, ViewerOptions, WINDOW_SIZE};
+use tetray_engine::{FrameOptions, Log, Representation, Source};
+use tetray_viewer::{ViewerApp, ViewerOptions, WINDOW_SIZE};
 
-const XYZ: &[u8] = include_bytes!("../../../data/plot3d/bluntfinxyz.bin");
-const Q: &[u8] = include_bytes!("../../../data/plot3d/bluntfinq.bin");
 const ORBIT_FRAMES: usize = 30;
 
 fn ms(d: Duration) -> f64 {
@@ -44,8 +43,12 @@ fn until_idle(harness: &mut Harness<'_, ViewerApp>) -> Vec<Duration> {
 }
 
 fn main() -> anyhow::Result<()> {
-    let loaded = tetray_io::load_plot3d_bytes(XYZ, Some(Q), "embedded Blunt Fin")?;
-    let dataset = Dataset::from_loaded("embedded Blunt Fin", loaded);
+    let options = FrameOptions {
+        size: (64, 64),
+        representation: Representation::Both,
+        ..FrameOptions::default()
+    };
+    let setup = tetray_engine::prepare(Source::Embedded, &options, Log::quiet())?;
     let mut options = ViewerOptions::default();
     if let Some(ms) = std::env::args().nth(1) {
         options.budget = Duration::from_millis(ms.parse()?);
@@ -55,7 +58,7 @@ fn main() -> anyhow::Result<()> {
         .with_size(egui::Vec2::from(WINDOW_SIZE))
         .with_render_every_step(true)
         .wgpu_setup(tetray_viewer::wgpu_setup())
-        .build_eframe(|cc| ViewerApp::new(cc, dataset, options).expect("viewer"));
+        .build_eframe(|cc| ViewerApp::new(cc, setup, options).expect("viewer"));
     let startup_frames = until_idle(&mut harness);
     let startup = start.elapsed();
     let first = harness.state().frame_report();

@@ -8,34 +8,26 @@ use anyhow::Context;
 use egui::{PointerButton, Rect, Sense};
 use glam::Vec3;
 use tetray_core::Camera;
-use tetray_integrate::{Method, OpacityMode, TransferFunction};
+use tetray_engine::{Log, Setup};
+use tetray_integrate::{Method, TransferFunction};
 use tetray_scene::Scene;
-use tetray_shearwarp::{Classification, ClassifyOptions, ShearWarp};
+use tetray_shearwarp::ShearWarp;
 
 use crate::camera_ui;
 use crate::cpu::{CpuJob, CpuWork, CpuWorker};
-use crate::dataset::{histogram, Dataset};
 use crate::engine::{FrameKey, GpuRenderer, Look, Phase, Progressive};
-use crate::methods::{integrator_options, RendererChoice, Settings, ViewIntegrator};
+use crate::methods::{RendererChoice, Settings, ViewIntegrator};
 use crate::present::{read_texture, Display, DisplayTexture};
 use crate::projection::ProjectRenderer;
 use crate::tf_editor::TfEditor;
-use tetray_mesh::value_range;
 
 /// Histogram bins under the opacity curve.
 const HISTOGRAM_BINS: usize = 128;
 
-/// How the viewer starts.
+/// How the viewer starts (the field, transfer function, integrator, unit
+/// distance and opacity mode are the [`Setup`]'s).
 #[derive(Debug, Clone)]
 pub struct ViewerOptions {
-    /// Scalar field (default: the first).
-    pub field: Option<String>,
-    /// Transfer function (default: ParaView's default over the range).
-    pub tf: Option<TransferFunction>,
-    pub method: Method,
-    /// Opacity unit distance (default: ParaView's).
-    pub unit_distance: Option<f32>,
-    pub opacity_mode: OpacityMode,
     /// Render pixels per display pixel (default: 1 on a GPU, 0.25 on a
     /// CPU implementation such as lavapipe).
     pub image_scale: Option<f32>,
@@ -47,11 +39,6 @@ pub struct ViewerOptions {
 impl Default for ViewerOptions {
     fn default() -> Self {
         ViewerOptions {
-            field: None,
-            tf: None,
-            method: Method::Ppi,
-            unit_distance: None,
-            opacity_mode: OpacityMode::Exact,
             image_scale: None,
             budget: Duration::from_millis(40),
             early_termination: 1.0,
@@ -61,9 +48,9 @@ impl Default for ViewerOptions {
 
 /// The viewer.
 pub struct ViewerApp {
-    pub(crate) dataset: Dataset,
-    pub(crate) scene: Arc<Scene>,
-    pub(crate) range: (f32, f32),
+    /// The engine's setup: the scene of the active field (and the regular
+    /// grid of image data), the defaults, what integrators are made from.
+    pub(crate) setup: Setup,
     pub(crate) gpu: GpuRenderer,
     render_state: egui_wgpu::RenderState,
     pub(crate) progressive: Progressive,
@@ -99,7 +86,7 @@ impl ViewerApp {
     /// The viewer on eframe's wgpu device (the ray caster shares it).
     pub fn new(
         cc: &eframe::CreationContext<'_>,
-        dataset: Dataset,
+        setup: Setup,
         options: ViewerOptions,
     ) -> anyhow::Result<ViewerApp> {
         let render_state = cc
@@ -111,48 +98,29 @@ impl ViewerApp {
             render_state.queue.clone(),
             render_state.adapter.get_info(),
         );
-        let fields = dataset.field_names();
-        let field = match options.field {
-            Some(name) if fields.contains(&name) => name,
-            Some(name) => anyhow::bail!(
-                "--scalar {name:?}: {} has no such field; it has {}",
-                dataset.name,
-                fields.join(", ")
-            ),
-            None => fields
-                .first()
-                .cloned()
-                .with_context(|| format!("{} has no point scalar field", dataset.name))?,
-        };
-        let scene = dataset.scene(&field)?;
-        let range = value_range(&scene.scalar);
-        let tf = options
-            .tf
-            .unwrap_or_else(|| TransferFunction::default_for_range(range.0, range.1));
-        let tf_editor = TfEditor::new(&tf, range, histogram(&scene.scalar, range, HISTOGRAM_BINS));
+        let scene = Arc::clone(setup.scene_arc().context("the viewer needs tetrahedra")?);
+        let tf_editor = tf_editor(&setup, &scene.scalar);
         let image_scale = options
             .image_scale
             .unwrap_or(if ctx.is_cpu() { 0.25 } else { 1.0 });
         let settings = Settings {
             renderer: RendererChoice::GpuRaycast,
-            methods: [options.method, Method::Exact],
+            methods: [setup.method, Method::Exact],
             compare: false,
             display: Display::Divider,
             divider: 0.5,
             diff_scale: 0.05,
-            unit_distance: options.unit_distance.unwrap_or(dataset.unit_distance),
-            opacity_mode: options.opacity_mode,
+            unit_distance: setup.unit_distance,
+            opacity_mode: setup.integrator_options.opacity_mode,
             early_termination: options.early_termination,
             image_scale,
-            field,
+            field: setup.extent.field.clone(),
             background: [0.0; 3],
             show_stats: true,
         };
         let gpu = GpuRenderer::new(ctx, &scene)?;
         let mut app = ViewerApp {
-            dataset,
-            scene: Arc::new(scene),
-            range,
+            setup,
             gpu,
             render_state,
             progressive: Progressive::new(options.budget),
@@ -178,6 +146,23 @@ impl ViewerApp {
         };
         app.rebuild_integrators()?;
         Ok(app)
+    }
+
+    /// The active field's scene.
+    pub(crate) fn scene(&self) -> &Arc<Scene> {
+        self.setup
+            .scene_arc()
+            .expect("the viewer's setup has tetrahedra")
+    }
+
+    /// The point fields the viewer can show.
+    pub(crate) fn field_names(&self) -> Vec<String> {
+        self.scene()
+            .mesh
+            .fields
+            .iter()
+            .map(|f| f.name.clone())
+            .collect()
     }
 
     /// The adapter the views render on.
@@ -227,11 +212,10 @@ impl ViewerApp {
     /// transfer function; on failure the previous ones stay.
     pub(crate) fn rebuild_integrators(&mut self) -> anyhow::Result<()> {
         let tf = self.tf_editor.transfer_function()?;
-        let options = integrator_options(&self.settings, self.dataset.chord, self.range);
         let count = if self.settings.compare { 2 } else { 1 };
         let views = self.settings.methods[..count]
             .iter()
-            .map(|&m| ViewIntegrator::new(&self.gpu.ctx, m, &tf, &options))
+            .map(|&m| ViewIntegrator::new(&self.gpu.ctx, &self.setup, m, &tf, &self.settings))
             .collect::<anyhow::Result<Vec<_>>>()?;
         self.tf_notes = views.iter().map(ViewIntegrator::update_note).collect();
         self.views = views;
@@ -240,24 +224,17 @@ impl ViewerApp {
         Ok(())
     }
 
-    /// A new active field: scene, upload, histogram and a default
-    /// transfer function over its range.
+    /// A new active field: the engine's scene and transfer function for
+    /// it, the upload and the editor over its range and histogram.
     pub(crate) fn change_field(&mut self, field: &str) -> anyhow::Result<()> {
-        let scene = self.dataset.scene(field)?;
+        self.setup.set_field(field, Log::quiet())?;
+        let scene = Arc::clone(self.scene());
         self.gpu.set_scene(&scene)?;
         self.projection = None;
-        self.range = value_range(&scene.scalar);
-        let (lo, hi) = self.range;
-        let tf = TransferFunction::default_for_range(lo, hi);
-        let mut editor = TfEditor::new(
-            &tf,
-            self.range,
-            histogram(&scene.scalar, self.range, HISTOGRAM_BINS),
-        );
+        let mut editor = tf_editor(&self.setup, &scene.scalar);
         editor.preset_path = std::mem::take(&mut self.tf_editor.preset_path);
         editor.rescale = self.tf_editor.rescale;
         self.tf_editor = editor;
-        self.scene = Arc::new(scene);
         self.rebuild_integrators()
     }
 
@@ -365,7 +342,7 @@ impl ViewerApp {
         rect: Rect,
         size: (u32, u32),
     ) {
-        let (lo, hi) = self.scene.bounds();
+        let (lo, hi) = self.setup.extent.bounds;
         let aspect = size.0 as f32 / size.1 as f32;
         if self.camera.is_none() || self.reset_camera {
             let mut camera = self.camera.unwrap_or_default();
@@ -431,7 +408,8 @@ impl ViewerApp {
             }
             RendererChoice::Projection(sort) => {
                 if self.projection.is_none() {
-                    self.projection = Some(ProjectRenderer::new(&gpu.ctx, &self.scene)?);
+                    let scene = self.setup.scene_arc().context("no tetrahedra")?;
+                    self.projection = Some(ProjectRenderer::new(&gpu.ctx, scene)?);
                 }
                 let projection = self.projection.as_mut().context("no projection")?;
                 // Follow the camera when a frame fits the budget; else
@@ -477,7 +455,7 @@ impl ViewerApp {
                     CpuWork::ShearWarp(self.shear_warp_views()?)
                 } else {
                     CpuWork::Raycast {
-                        scene: Arc::clone(&self.scene),
+                        scene: Arc::clone(self.scene()),
                         integrators: self.views.iter().map(|v| Arc::clone(&v.cpu)).collect(),
                     }
                 };
@@ -502,24 +480,21 @@ impl ViewerApp {
                 return Ok(views.clone());
             }
         }
-        let grid = self.dataset.regular_grid(&self.settings.field)?;
         let tf = self.tf_editor.transfer_function()?;
-        let table_size = tetray_integrate::IntegratorOptions::default().preintegration_table_size;
         let views = self
             .views
             .iter()
             .map(|view| {
-                let options = ClassifyOptions {
-                    classification: Classification::for_method(view.method),
-                    unit_distance: self.settings.unit_distance,
-                    opacity_mode: self.settings.opacity_mode,
-                    table_size,
-                };
-                ShearWarp::new(grid.clone(), &tf, &options)
+                self.setup
+                    .shear_warp(
+                        view.method,
+                        &tf,
+                        self.settings.unit_distance,
+                        self.settings.opacity_mode,
+                    )
                     .map(Arc::new)
-                    .context("classifying the grid for shear-warp")
             })
-            .collect::<anyhow::Result<Vec<_>>>()?;
+            .collect::<Result<Vec<_>, _>>()?;
         self.shear_warp = Some((self.generation, views.clone()));
         Ok(views)
     }
@@ -599,5 +574,36 @@ impl eframe::App for ViewerApp {
         egui::CentralPanel::default()
             .frame(egui::Frame::NONE)
             .show(ui, |ui| self.view(ui));
+    }
+}
+
+/// The editor of the setup's transfer function over its field's range and
+/// the histogram of `values`.
+fn tf_editor(setup: &Setup, values: &[f32]) -> TfEditor {
+    let range = setup.extent.range;
+    TfEditor::new(&setup.tf, range, histogram(values, range, HISTOGRAM_BINS))
+}
+
+/// Counts of `values` in `bins` equal bins over `[lo, hi]`.
+pub(crate) fn histogram(values: &[f32], (lo, hi): (f32, f32), bins: usize) -> Vec<u32> {
+    let mut counts = vec![0u32; bins.max(1)];
+    let width = hi - lo;
+    for &v in values {
+        let t = if width > 0.0 { (v - lo) / width } else { 0.0 };
+        let bin = ((t * bins as f32) as usize).min(bins.max(1) - 1);
+        counts[bin] += 1;
+    }
+    counts
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn histogram_puts_the_ends_in_the_end_bins() {
+        let counts = histogram(&[0.0, 0.5, 0.99, 1.0, 0.25], (0.0, 1.0), 4);
+        assert_eq!(counts, vec![1, 1, 1, 2]);
+        assert_eq!(histogram(&[3.0, 3.0], (3.0, 3.0), 2), vec![2, 0]);
     }
 }

@@ -12,7 +12,6 @@
 mod app;
 pub mod camera_ui;
 pub mod cpu;
-pub mod dataset;
 pub mod engine;
 pub mod gpu_io;
 pub mod methods;
@@ -27,7 +26,6 @@ pub mod tf_editor;
 use std::sync::Arc;
 
 pub use app::{ViewerApp, ViewerOptions};
-pub use dataset::{Dataset, GridVolume};
 
 /// Default window size (points).
 pub const WINDOW_SIZE: [f32; 2] = [1280.0, 800.0];
@@ -66,9 +64,11 @@ pub fn wgpu_setup() -> egui_wgpu::WgpuSetup {
     egui_wgpu::WgpuSetup::CreateNew(setup)
 }
 
-/// Opens the viewer window on `dataset` and returns when it is closed.
-pub fn run(dataset: Dataset, options: ViewerOptions) -> anyhow::Result<()> {
-    let title = format!("tetray view - {}", dataset.name);
+/// Opens the viewer window on `setup` (made by the engine, with the
+/// regular grid of image data for shear-warp: `Representation::Both`) and
+/// returns when it is closed.
+pub fn run(setup: tetray_engine::Setup, options: ViewerOptions) -> anyhow::Result<()> {
+    let title = format!("tetray view - {}", setup.name());
     let native = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
             .with_title(&title)
@@ -84,7 +84,7 @@ pub fn run(dataset: Dataset, options: ViewerOptions) -> anyhow::Result<()> {
         &title,
         native,
         Box::new(move |cc| {
-            let app = ViewerApp::new(cc, dataset, options)?;
+            let app = ViewerApp::new(cc, setup, options)?;
             Ok(Box::new(app))
         }),
     )

@@ -8,10 +8,9 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use anyhow::Context;
+use tetray_engine::Setup;
 use tetray_gpu::{GpuContext, GpuIntegrator};
-use tetray_integrate::{
-    IntegratorOptions, Method, OpacityMode, ScalarIntegrator, TransferFunction,
-};
+use tetray_integrate::{Method, OpacityMode, ScalarIntegrator, TransferFunction};
 use tetray_project::SortKind;
 
 use crate::present::Display;
@@ -110,46 +109,26 @@ pub struct ViewIntegrator {
     pub upload: Duration,
 }
 
-/// The method the GPU renders in place of `method`.
-pub fn gpu_stand_in(method: Method) -> Method {
-    match method {
-        Method::Reference => Method::Exact,
-        Method::ReferenceOpacity => Method::LinOpacity,
-        other => other,
-    }
-}
-
-/// The integrator options of `settings` for a mesh with mean chord `chord`
-/// over the scalar range `range` (as `tetray render` sets them).
-pub fn integrator_options(settings: &Settings, chord: f32, range: (f32, f32)) -> IntegratorOptions {
-    IntegratorOptions {
-        unit_distance: settings.unit_distance,
-        opacity_mode: settings.opacity_mode,
-        riemann_step: chord / 4.0,
-        preintegration_length: chord,
-        scalar_range: Some(range),
-        ..IntegratorOptions::default()
-    }
-}
-
 impl ViewIntegrator {
+    /// `method` with `tf` and the unit distance and opacity mode of
+    /// `settings`, made by the engine as `tetray render` makes it.
     pub fn new(
         ctx: &GpuContext,
+        setup: &Setup,
         method: Method,
         tf: &TransferFunction,
-        options: &IntegratorOptions,
+        settings: &Settings,
     ) -> anyhow::Result<ViewIntegrator> {
-        let cpu = ScalarIntegrator::new(method, tf, options)
-            .with_context(|| format!("setting up the {method} integrator"))?;
-        let setup = cpu.setup_time();
-        let gpu_method = gpu_stand_in(method);
+        let make =
+            |m: Method| setup.integrator_with(m, tf, settings.unit_distance, settings.opacity_mode);
+        let cpu = make(method)?;
+        let setup_time = cpu.setup_time();
+        let gpu_method = method.gpu_stand_in();
         let start = Instant::now();
         let gpu = if gpu_method == method {
             GpuIntegrator::new(ctx, &cpu)
         } else {
-            let stand_in = ScalarIntegrator::new(gpu_method, tf, options)
-                .with_context(|| format!("setting up the {gpu_method} integrator"))?;
-            GpuIntegrator::new(ctx, &stand_in)
+            GpuIntegrator::new(ctx, &make(gpu_method)?)
         }
         .with_context(|| format!("uploading the {gpu_method} integrator"))?;
         Ok(ViewIntegrator {
@@ -157,7 +136,7 @@ impl ViewIntegrator {
             cpu: Arc::new(cpu),
             gpu,
             gpu_method,
-            setup,
+            setup: setup_time,
             upload: start.elapsed(),
         })
     }

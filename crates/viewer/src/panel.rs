@@ -14,8 +14,8 @@ pub fn controls(app: &mut ViewerApp, ui: &mut Ui) -> bool {
     ui.heading("tetray view");
     ui.label(format!(
         "{} · {} tetrahedra",
-        app.dataset.name,
-        app.dataset.tet_count()
+        app.setup.name(),
+        app.setup.tet_count()
     ));
     if let Some(error) = &app.error {
         ui.colored_label(ui.visuals().error_fg_color, format!("error: {error}"));
@@ -56,12 +56,14 @@ fn method_picker(ui: &mut Ui, label: &str, method: &mut Method, renderer: Render
 }
 
 fn rendering(app: &mut ViewerApp, ui: &mut Ui) {
+    let fields = app.field_names();
+    let paraview_unit_distance = app.setup.extent.paraview_unit_distance;
     let s = &mut app.settings;
     egui::ComboBox::from_label("Renderer")
         .selected_text(s.renderer.label())
         .show_ui(ui, |ui| {
             for r in RendererChoice::ALL {
-                let available = r != RendererChoice::ShearWarp || app.dataset.has_grid();
+                let available = r != RendererChoice::ShearWarp || app.setup.image().is_some();
                 ui.add_enabled_ui(available, |ui| {
                     ui.selectable_value(&mut s.renderer, r, r.label())
                         .on_disabled_hover_text(
@@ -73,7 +75,7 @@ fn rendering(app: &mut ViewerApp, ui: &mut Ui) {
     // A method the renderer cannot run falls back to its closed form.
     for m in &mut s.methods {
         if !s.renderer.supports(*m) {
-            *m = crate::methods::gpu_stand_in(*m);
+            *m = m.gpu_stand_in();
         }
     }
     method_picker(ui, "Integrator", &mut s.methods[0], s.renderer);
@@ -94,7 +96,6 @@ fn rendering(app: &mut ViewerApp, ui: &mut Ui) {
             );
         }
     }
-    let fields = app.dataset.field_names();
     egui::ComboBox::from_label("Scalar field")
         .selected_text(s.field.clone())
         .show_ui(ui, |ui| {
@@ -112,7 +113,7 @@ fn rendering(app: &mut ViewerApp, ui: &mut Ui) {
         )
         .labelled_by(label.id);
         if ui.small_button("ParaView's").clicked() {
-            s.unit_distance = app.dataset.unit_distance;
+            s.unit_distance = paraview_unit_distance;
         }
     });
     ui.horizontal(|ui| {

@@ -47,7 +47,7 @@ impl TfEditor {
     /// The edited function (the editor keeps it valid: points stay
     /// ordered, opacities in [0, 1], colours non-negative).
     pub fn transfer_function(&self) -> anyhow::Result<TransferFunction> {
-        Ok(TransferFunction::new(
+        Ok(tetray_engine::tf::from_points(
             self.color.clone(),
             self.opacity.clone(),
         )?)
@@ -66,7 +66,7 @@ impl TfEditor {
             .with_context(|| format!("cannot read {}", path.display()))
             .and_then(|text| {
                 let rescale = self.rescale.then_some(self.range);
-                TransferFunction::from_paraview_json_with_report(&text, None, rescale)
+                tetray_engine::tf::paraview_preset(&text, None, rescale)
                     .with_context(|| format!("{}", path.display()))
             });
         match result {
@@ -104,8 +104,7 @@ impl TfEditor {
 
     /// Resets to the default function over the data range.
     pub fn reset(&mut self) {
-        let (lo, hi) = self.range;
-        self.set(&TransferFunction::default_for_range(lo, hi));
+        self.set(&tetray_engine::tf::default_ramp(self.range));
     }
 
     /// The scalar axis: the data range widened to every control point.

@@ -51,18 +51,17 @@ fn starts_on_the_default_dataset_and_matches_the_snapshot() {
     // display is: within 2/255 per channel, 1% of pixels (silhouettes) free.
     let app = harness.state();
     let camera = app.camera().expect("camera");
-    let dataset = support::blunt_fin();
-    let field = &dataset.field_names()[0];
-    let scene = dataset.scene(field).expect("scene");
+    let setup = support::blunt_fin();
+    let scene = setup.scene().expect("scene");
     let (lo, hi) = tetray_mesh::value_range(&scene.scalar);
     let tf = TransferFunction::default_for_range(lo, hi);
     let integrator = ScalarIntegrator::new(
         Method::Ppi,
         &tf,
         &IntegratorOptions {
-            unit_distance: dataset.unit_distance,
-            riemann_step: dataset.chord / 4.0,
-            preintegration_length: dataset.chord,
+            unit_distance: setup.extent.paraview_unit_distance,
+            riemann_step: setup.extent.mean_chord / 4.0,
+            preintegration_length: setup.extent.mean_chord,
             scalar_range: Some((lo, hi)),
             ..IntegratorOptions::default()
         },

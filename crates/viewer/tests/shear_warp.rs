@@ -11,7 +11,6 @@ use glam::{DVec3, Vec3};
 use support::{difference, displayed, gpu_or_skip, harness_on, options, run_until_idle};
 use tetray_integrate::{IntegratorOptions, TransferFunction};
 use tetray_shearwarp::{Classification, ClassifyOptions, ShearWarp, ShearWarpOptions};
-use tetray_viewer::{Dataset, GridVolume};
 
 const DIMS: [usize; 3] = [14, 12, 10];
 const SPACING: [f64; 3] = [1.0, 1.25, 1.5];
@@ -27,7 +26,7 @@ fn value(i: usize, j: usize, k: usize) -> f32 {
 
 /// The grid as a legacy ASCII STRUCTURED_POINTS file, loaded through the
 /// readers both as tetrahedra and as its grid (as `tetray view` does).
-fn dataset() -> Dataset {
+fn dataset() -> tetray_engine::Setup {
     let dir = std::env::temp_dir().join(format!("tetray-viewer-sw-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp dir");
     let path = dir.join("bump.vtk");
@@ -52,21 +51,10 @@ fn dataset() -> Dataset {
         }
     }
     std::fs::write(&path, text).expect("write the grid");
-    let loaded = tetray_io::load(&path, &tetray_io::LoadOptions::default()).expect("load");
-    let origin = loaded.origin();
-    let image = tetray_io::vtk::read_image_grid(&path).expect("the grid");
+    let setup = support::setup(tetray_engine::Source::file(&path));
     let _ = std::fs::remove_dir_all(&dir);
-    let grid = GridVolume {
-        dims: image.dims,
-        origin: (DVec3::from(image.origin) - origin).as_vec3(),
-        spacing: DVec3::from(image.spacing).as_vec3(),
-        fields: image
-            .fields
-            .into_iter()
-            .map(|f| (f.name, f.values))
-            .collect(),
-    };
-    Dataset::from_loaded("bump.vtk", loaded).with_grid(grid)
+    assert!(setup.image().is_some(), "image data keeps its grid");
+    setup
 }
 
 #[test]
@@ -75,7 +63,7 @@ fn the_shear_warp_renderer_renders_image_data() {
         return;
     }
     let dataset = dataset();
-    assert!(dataset.has_grid());
+    assert!(dataset.image().is_some());
     let unit_distance = dataset.unit_distance;
     let mut harness = harness_on(dataset, options());
     run_until_idle(&mut harness);

@@ -16,18 +16,14 @@
 use std::process::ExitCode;
 
 use glam::{DVec3, Vec3};
-use tetray_boundary_bvh::BuildPreset;
-use tetray_distributed::in_situ::fit_camera;
 use tetray_distributed::mpi::traits::*;
 use tetray_distributed::{
     render_in_situ, render_in_situ_cells, spatial_split, InSituView, RankMesh,
 };
-use tetray_integrate::{IntegratorOptions, ScalarIntegrator, TransferFunction};
+use tetray_engine::{Engine, Log, Source, WalkOptions};
 use tetray_mesh::cells::{assemble_at, CellArray, CellGrid, ReadOptions};
 use tetray_mesh::synthetic::{hollow_box, CellSplit};
-use tetray_mesh::{paraview_unit_distance, prepare, ScalarField, TetMesh};
-use tetray_raycast::{render_scalar, RenderOptions};
-use tetray_scene::Scene;
+use tetray_mesh::{prepare, ScalarField, TetMesh};
 
 /// A nonlinear field, so a wrong split or order would show.
 fn field(p: Vec3) -> f32 {
@@ -220,27 +216,24 @@ fn main() -> ExitCode {
             return ExitCode::FAILURE;
         }
     }
-    // The whole mesh in this one process.
+    // The whole mesh in this one process, through the engine as `tetray
+    // render` makes a frame.
     let loaded = prepare(whole).expect("a valid mesh");
-    let cells = loaded.mesh.tets.len();
-    let scene = Scene::new(loaded.mesh, loaded.topology, "s", BuildPreset::default())
-        .expect("a valid scene");
-    let (lo, hi) = scene.bounds();
-    let (s_lo, s_hi) = tetray_mesh::value_range(&scene.scalar);
-    let camera = fit_camera(lo, hi, &view).expect("a valid camera");
-    let tf = TransferFunction::default_for_range(s_lo, s_hi);
-    let options = IntegratorOptions {
-        unit_distance: paraview_unit_distance((lo, hi), cells),
-        scalar_range: Some((s_lo, s_hi)),
-        ..IntegratorOptions::default()
+    let source = Source::Mesh {
+        mesh: Box::new(loaded),
+        name: "the whole mesh".into(),
     };
-    let integrator = ScalarIntegrator::new(view.method, &tf, &options).expect("an integrator");
-    let opts = RenderOptions {
-        width: view.width,
-        height: view.height,
-        ..RenderOptions::default()
-    };
-    let reference = render_scalar(&scene, &camera, &integrator, &opts).expect("a frame");
+    let setup = tetray_engine::prepare(source, &view.frame_options(), Log::quiet())
+        .expect("the single-process setup");
+    let reference = Engine::Cpu
+        .render(
+            &setup,
+            &setup.camera,
+            WalkOptions::default(),
+            (view.width, view.height),
+            None,
+        )
+        .expect("a frame");
     let worst = frame
         .image
         .rgba

@@ -7,7 +7,7 @@ use std::path::Path;
 use tetray_mesh::cells::{per_tuple, to_f32, CellGrid};
 use tetray_mesh::ScalarField;
 
-use super::VtkError;
+use super::{ReadOptions, VtkError, VtkRead};
 
 /// Where the points of an image lie: point `(i, j, k)` (from 0) at
 /// `origin + direction * ((i, j, k) * spacing)`, `direction` row-major.
@@ -40,23 +40,42 @@ pub struct ImageGrid {
 /// spacing) is an error naming the file.
 pub fn read_image_grid(path: &Path) -> Result<ImageGrid, VtkError> {
     let file = path.display().to_string();
+    let (grid, image) = read_raw_image(path, &file)?;
+    image_grid(&grid, image, &file)
+}
+
+/// Reads an image file once as both what it is: its regular grid, and its
+/// cells split into tetrahedra exactly as [`super::read_vtu_file_with`] or
+/// [`super::read_legacy_file_with`] split them.
+pub fn read_image_data_with(
+    path: &Path,
+    opts: &ReadOptions,
+) -> Result<(VtkRead, ImageGrid), VtkError> {
+    let file = path.display().to_string();
+    let (grid, image) = read_raw_image(path, &file)?;
+    let image = image_grid(&grid, image, &file)?;
+    Ok((super::assemble(grid, &file, opts)?, image))
+}
+
+/// The raw cells of an XML or legacy file and, for image data, where its
+/// points lie.
+fn read_raw_image(path: &Path, file: &str) -> Result<(CellGrid, Option<ImageGeometry>), VtkError> {
     let bytes = super::read_path(path)?;
     let xml = bytes.iter().find(|b| !b.is_ascii_whitespace()) == Some(&b'<');
-    let (grid, image) = if xml {
-        let mut doc = super::xml::tree::parse(&bytes, &file)?;
+    if xml {
+        let mut doc = super::xml::tree::parse(&bytes, file)?;
         if doc.dataset != "UnstructuredGrid" && !doc.pieces.is_empty() {
-            super::xml::structured::read_raw_image(&mut doc, &file)?
+            super::xml::structured::read_raw_image(&mut doc, file)
         } else {
-            (super::xml::read::read_raw(&bytes, &file)?, None)
+            Ok((super::xml::read::read_raw(&bytes, file)?, None))
         }
     } else {
-        super::legacy::read::read_raw(&bytes, &file)?
-    };
-    image_grid(grid, image, &file)
+        super::legacy::read::read_raw(&bytes, file)
+    }
 }
 
 fn image_grid(
-    grid: CellGrid,
+    grid: &CellGrid,
     image: Option<ImageGeometry>,
     file: &str,
 ) -> Result<ImageGrid, VtkError> {
@@ -90,7 +109,7 @@ fn image_grid(
         )));
     }
     let npoints = image.dims.iter().product::<usize>();
-    let mut warnings = grid.warnings;
+    let mut warnings = grid.warnings.clone();
     let mut fields = Vec::new();
     for array in &grid.point_arrays {
         if array.name == "vtkGhostType" {

@@ -28,7 +28,7 @@ mod xml;
 use std::path::Path;
 
 pub use error::VtkError;
-pub use image_grid::{read_image_grid, ImageGrid};
+pub use image_grid::{read_image_data_with, read_image_grid, ImageGrid};
 pub use legacy::write::write_legacy;
 pub use piece_subset::{parallel_piece_count, read_piece_subset, PieceSubset};
 pub use xml::stream::{write_vtu_streamed, TetChunks, VtuIndex, VtuStreamOptions};
@@ -49,6 +49,21 @@ pub enum VtuEncoding {
     AppendedRaw,
     /// Base64 in an `<AppendedData encoding="base64">` section.
     AppendedBase64,
+}
+
+/// The one step from a file's raw cells to tetrahedra, for every reader
+/// of this module: ghost cells and global ids handled, a structured grid
+/// without volume cells refused, cells split.
+pub(crate) fn assemble(
+    grid: tetray_mesh::cells::CellGrid,
+    name: &str,
+    opts: &ReadOptions,
+) -> Result<VtkRead, VtkError> {
+    let grid = tetray_mesh::cells::finish_grid(grid, name)?;
+    if grid.dataset != "UnstructuredGrid" {
+        collection::require_volume(&grid, name, "")?;
+    }
+    Ok(tetray_mesh::cells::assemble_with(grid, name, opts)?)
 }
 
 fn read_path(path: &Path) -> Result<Vec<u8>, VtkError> {
@@ -97,7 +112,7 @@ pub fn read_vtu_file_with(path: &Path, opts: &ReadOptions) -> Result<VtkRead, Vt
     // The file's bytes are freed before the cells become tetrahedra: not
     // both in memory at the peak.
     let grid = xml::read::read_raw(&read_path(path)?, &name)?;
-    xml::read::assemble(grid, &name, opts)
+    assemble(grid, &name, opts)
 }
 
 /// Reads a serial XML file held in memory; `name` is used in messages.
@@ -121,7 +136,7 @@ pub fn assemble_grid(
     name: &str,
     opts: &ReadOptions,
 ) -> Result<VtkRead, VtkError> {
-    xml::read::assemble(grid, name, opts)
+    assemble(grid, name, opts)
 }
 
 /// Reads a parallel XML file (`.pvtu`, `.pvts`, `.pvtr`, `.pvti`): every

@@ -155,7 +155,7 @@ impl Run<'_> {
         size: (u32, u32),
     ) -> Result<Vec<Row>, StudyError> {
         let frames = self.options.frames;
-        let tets = prepared.scene.tet_count();
+        let tets = prepared.scene().tet_count();
         let row = |renderer, method: Method, t: Timing| Row {
             mesh: prepared.name.clone(),
             tets,
@@ -176,11 +176,11 @@ impl Run<'_> {
             .map(|&m| prepared.integrator(m))
             .collect::<Result<Vec<_>, _>>()?;
         for (&method, integrator) in methods.iter().zip(&integrators) {
-            let t = time_cpu(&prepared.scene, camera, integrator, size, frames)?;
+            let t = time_cpu(prepared.scene(), camera, integrator, size, frames)?;
             rows.push(row("cpu", method, t));
         }
         if let Some(gpu) = &self.gpu {
-            match GpuScene::new(&gpu.ctx, &prepared.scene) {
+            match GpuScene::new(&gpu.ctx, prepared.scene()) {
                 Ok(scene) => {
                     let mut projection = None;
                     for (&method, integrator) in methods.iter().zip(&integrators) {
@@ -192,7 +192,7 @@ impl Run<'_> {
                         if projection.is_none() {
                             projection = Some(tetray_project::Projection::new(
                                 &gpu.ctx,
-                                &prepared.scene,
+                                prepared.scene(),
                                 &uploaded,
                             )?);
                         }
@@ -279,13 +279,18 @@ pub fn run(
         log(&format!(
             "speed: {} ({} tetrahedra) loaded in {:.2} s",
             dataset.name,
-            prepared.scene.tet_count(),
+            prepared.scene().tet_count(),
             prepared.load_s + prepared.scene_s
         ));
-        table.extend(run.measure(&prepared, &prepared.camera, &options.methods, options.size)?);
+        table.extend(run.measure(
+            &prepared,
+            &prepared.setup.camera,
+            &options.methods,
+            options.size,
+        )?);
         // Fig. 6.3 on the first dataset, with the default method.
         if k == 0 {
-            let (lo, hi) = prepared.scene.bounds();
+            let (lo, hi) = prepared.scene().bounds();
             let mut square = Camera::default();
             square.reset(lo, hi, 1.0)?;
             for &edge in &options.resolutions {
@@ -300,7 +305,7 @@ pub fn run(
     let mut generated = Vec::new();
     for &target in &options.scaling_tets {
         let prepared = generated_box(cells_for(target), options.size)?;
-        let tets = prepared.scene.tet_count();
+        let tets = prepared.scene().tet_count();
         log(&format!(
             "speed: {} ({tets} tetrahedra) built in {:.2} s",
             prepared.name,
@@ -311,7 +316,12 @@ pub fn run(
             build_s: prepared.load_s,
             scene_s: prepared.scene_s,
         });
-        scaling.extend(run.measure(&prepared, &prepared.camera, &[Method::Ppi], options.size)?);
+        scaling.extend(run.measure(
+            &prepared,
+            &prepared.setup.camera,
+            &[Method::Ppi],
+            options.size,
+        )?);
     }
 
     let cpu = format!(

@@ -1,18 +1,17 @@
 //! What the speed study renders: the three PLOT3D datasets and generated
-//! box meshes, each made a scene with the CLI's defaults (the default
-//! transfer function over the scalar's range, ParaView's unit distance,
-//! a ResetCamera view).
+//! box meshes, each made ready by the engine with the CLI's defaults (the
+//! default transfer function over the scalar's range, ParaView's unit
+//! distance) and a plain ResetCamera view.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::time::Instant;
 
 use glam::Vec3;
 use tetray_boundary_bvh::BuildPreset;
-use tetray_core::Camera;
-use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunction};
-use tetray_io::LoadOptions;
+use tetray_engine::{CameraOptions, FrameOptions, IntegratorChoice, Log, Setup, Source};
+use tetray_integrate::{Method, ScalarIntegrator};
 use tetray_mesh::synthetic::{box_grid, CellSplit};
-use tetray_mesh::{mean_tet_chord, ScalarField, TetMesh, Topology};
+use tetray_mesh::ScalarField;
 use tetray_scene::Scene;
 
 use crate::StudyError;
@@ -47,13 +46,10 @@ pub const DATASETS: [Dataset; 3] = [
     },
 ];
 
-/// A scene ready to time, with what the integrators need.
+/// A scene ready to time: the engine's setup of it.
 pub struct Prepared {
     pub name: String,
-    pub scene: Scene,
-    pub camera: Camera,
-    pub tf: TransferFunction,
-    pub options: IntegratorOptions,
+    pub setup: Setup,
     /// Seconds to build the topology (generated meshes) or load (files),
     /// and to make the scene (checks, boundary BVH).
     pub load_s: f64,
@@ -61,8 +57,20 @@ pub struct Prepared {
 }
 
 impl Prepared {
+    pub fn scene(&self) -> &Scene {
+        self.setup
+            .scene()
+            .expect("the speed study's setups have tetrahedra")
+    }
+
     pub fn integrator(&self, method: Method) -> Result<ScalarIntegrator, StudyError> {
-        Ok(ScalarIntegrator::new(method, &self.tf, &self.options)?)
+        let setup = &self.setup;
+        Ok(setup.integrator_with(
+            method,
+            &setup.tf,
+            setup.unit_distance,
+            setup.integrator_options.opacity_mode,
+        )?)
     }
 }
 
@@ -72,25 +80,13 @@ pub fn load_dataset(
     dataset: &Dataset,
     size: (u32, u32),
 ) -> Result<Prepared, StudyError> {
-    let path: PathBuf = dir.join(dataset.grid);
-    let start = Instant::now();
-    let loaded = tetray_io::load(&path, &LoadOptions::default())?;
-    let load_s = start.elapsed().as_secs_f64();
-    let unit_distance = loaded.paraview_unit_distance();
-    prepare(
-        dataset.name.to_string(),
-        loaded.mesh,
-        loaded.topology,
-        dataset.field,
-        unit_distance,
-        size,
-        load_s,
-    )
+    let source = Source::file(dir.join(dataset.grid));
+    prepare(dataset.name.to_string(), source, dataset.field, None, size)
 }
 
 /// A box of `cells^3` hexahedra, five tetrahedra each, with a smooth
 /// non-linear field (two Gaussian blobs over a gradient), prepared for
-/// `size`. Returns the number of tetrahedra too.
+/// `size`.
 pub fn generated_box(cells: u32, size: (u32, u32)) -> Result<Prepared, StudyError> {
     let start = Instant::now();
     let mut mesh = box_grid(Vec3::ZERO, Vec3::ONE, [cells; 3], CellSplit::Five)?;
@@ -99,19 +95,18 @@ pub fn generated_box(cells: u32, size: (u32, u32)) -> Result<Prepared, StudyErro
         name: "blobs".into(),
         values,
     });
-    let topology = Topology::build(&mesh)?;
-    let load_s = start.elapsed().as_secs_f64();
+    let loaded = tetray_mesh::prepare(mesh)?;
+    let build_s = start.elapsed().as_secs_f64();
+    let name = format!("box {cells}^3 x 5");
+    let source = Source::Mesh {
+        mesh: Box::new(loaded),
+        name: name.clone(),
+    };
     // ParaView's rule on the hexahedra the box was cut into.
     let unit_distance = 3f32.sqrt() / cells as f32;
-    prepare(
-        format!("box {cells}^3 x 5"),
-        mesh,
-        topology,
-        "blobs",
-        unit_distance,
-        size,
-        load_s,
-    )
+    let mut prepared = prepare(name, source, "blobs", Some(unit_distance), size)?;
+    prepared.load_s = build_s;
+    Ok(prepared)
 }
 
 /// Hexahedra per axis of the generated box nearest `tets` tetrahedra.
@@ -124,42 +119,36 @@ fn blobs(p: Vec3) -> f32 {
     0.3 * p.x + blob(Vec3::new(0.35, 0.4, 0.5), 0.2) + 0.7 * blob(Vec3::new(0.7, 0.6, 0.4), 0.15)
 }
 
+/// The engine's setup of `source` with `field` active: the default
+/// transfer function over its range, ParaView's unit distance (or the one
+/// given), the default BVH and a plain ResetCamera view (no turn).
 fn prepare(
     name: String,
-    mesh: TetMesh,
-    topology: Topology,
+    source: Source,
     field: &str,
-    unit_distance: f32,
-    (width, height): (u32, u32),
-    load_s: f64,
+    unit_distance: Option<f32>,
+    size: (u32, u32),
 ) -> Result<Prepared, StudyError> {
-    let chord = mean_tet_chord(&mesh);
-    let start = Instant::now();
-    let scene = Scene::new(mesh, topology, field, BuildPreset::default())?;
-    let scene_s = start.elapsed().as_secs_f64();
-    let (lo, hi) = scene
-        .scalar
-        .iter()
-        .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &v| {
-            (lo.min(v), hi.max(v))
-        });
-    let (b_lo, b_hi) = scene.bounds();
-    let mut camera = Camera::default();
-    camera.reset(b_lo, b_hi, width as f32 / height as f32)?;
-    let options = IntegratorOptions {
-        unit_distance,
-        riemann_step: chord / 4.0,
-        preintegration_length: chord,
-        scalar_range: Some((lo, hi)),
-        ..IntegratorOptions::default()
+    let options = FrameOptions {
+        integrator: IntegratorChoice {
+            scalar: Some(field.to_string()),
+            unit_distance,
+            ..IntegratorChoice::default()
+        },
+        camera: CameraOptions {
+            azimuth: Some(0.0),
+            elevation: Some(0.0),
+            ..CameraOptions::default()
+        },
+        bvh_preset: Some(BuildPreset::default()),
+        size,
+        ..FrameOptions::default()
     };
+    let setup = tetray_engine::prepare(source, &options, Log::quiet())?;
     Ok(Prepared {
         name,
-        scene,
-        camera,
-        tf: TransferFunction::default_for_range(lo, hi),
-        options,
-        load_s,
-        scene_s,
+        load_s: setup.load_time.as_secs_f64(),
+        scene_s: setup.scene_time.as_secs_f64(),
+        setup,
     })
 }

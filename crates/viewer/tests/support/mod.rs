@@ -7,17 +7,23 @@
 use std::time::{Duration, Instant};
 
 use egui_kittest::Harness;
-use tetray_viewer::{Dataset, ViewerApp, ViewerOptions};
+use tetray_engine::{FrameOptions, Log, Representation, Setup, Source};
+use tetray_viewer::{ViewerApp, ViewerOptions};
 
-const BLUNT_FIN_XYZ: &[u8] = include_bytes!("../../../../data/plot3d/bluntfinxyz.bin");
-const BLUNT_FIN_Q: &[u8] = include_bytes!("../../../../data/plot3d/bluntfinq.bin");
+/// The setup of `source` as `tetray view` makes it (the regular grid of
+/// image data too).
+pub fn setup(source: Source) -> Setup {
+    let options = FrameOptions {
+        size: (64, 64),
+        representation: Representation::Both,
+        ..FrameOptions::default()
+    };
+    tetray_engine::prepare(source, &options, Log::quiet()).expect("the setup")
+}
 
 /// The default dataset, as `tetray view` loads it with no mesh.
-pub fn blunt_fin() -> Dataset {
-    let loaded =
-        tetray_io::load_plot3d_bytes(BLUNT_FIN_XYZ, Some(BLUNT_FIN_Q), "embedded Blunt Fin")
-            .expect("the embedded dataset loads");
-    Dataset::from_loaded("embedded Blunt Fin", loaded)
+pub fn blunt_fin() -> Setup {
+    setup(Source::Embedded)
 }
 
 /// Whether a GPU adapter exists for the viewer's setup. Without one the
@@ -63,12 +69,12 @@ pub fn harness(options: ViewerOptions) -> Harness<'static, ViewerApp> {
     harness_on(blunt_fin(), options)
 }
 
-/// The viewer on `dataset` in a harness drawing with wgpu.
-pub fn harness_on(dataset: Dataset, options: ViewerOptions) -> Harness<'static, ViewerApp> {
+/// The viewer on `setup` in a harness drawing with wgpu.
+pub fn harness_on(setup: Setup, options: ViewerOptions) -> Harness<'static, ViewerApp> {
     Harness::builder()
         .with_size(egui::Vec2::from(WINDOW))
         .wgpu_setup(tetray_viewer::wgpu_setup())
-        .build_eframe(move |cc| ViewerApp::new(cc, dataset, options).expect("the viewer starts"))
+        .build_eframe(move |cc| ViewerApp::new(cc, setup, options).expect("the viewer starts"))
 }
 
 /// Steps the harness until the frame is finished (a minute at most).

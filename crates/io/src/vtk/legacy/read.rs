@@ -14,8 +14,7 @@ use super::structured::{Kind, Structured};
 use crate::vtk::image_grid::ImageGeometry;
 use crate::vtk::numeric::Scalar;
 use crate::vtk::{ReadOptions, VtkError, VtkRead};
-use tetray_mesh::cells::finish_grid;
-use tetray_mesh::cells::{assemble_with, CellArray, CellGrid};
+use tetray_mesh::cells::{CellArray, CellGrid};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Attributes {
@@ -68,11 +67,7 @@ struct Parser<'a> {
 
 /// Parses a legacy VTK file held in memory; `name` is used in messages.
 pub(crate) fn read_with(bytes: &[u8], name: &str, opts: &ReadOptions) -> Result<VtkRead, VtkError> {
-    let grid = finish_grid(read_raw(bytes, name)?.0, name)?;
-    if grid.dataset != "UnstructuredGrid" {
-        crate::vtk::collection::require_volume(&grid, name, "")?;
-    }
-    Ok(assemble_with(grid, name, opts)?)
+    crate::vtk::assemble(read_raw(bytes, name)?.0, name, opts)
 }
 
 /// The raw grid of a legacy VTK file, before ghost cells and assembly,

@@ -8,25 +8,12 @@ use super::tree::{self, XmlArray, XmlPiece};
 use crate::vtk::numeric::Scalar;
 use crate::vtk::{ReadOptions, VtkError, VtkRead};
 use tetray_mesh::cells as polyhedron;
-use tetray_mesh::cells::{assemble_with, CellArray, CellGrid};
-use tetray_mesh::cells::{finish_grid, merge_arrays as merge};
+use tetray_mesh::cells::merge_arrays as merge;
+use tetray_mesh::cells::{CellArray, CellGrid};
 
 /// Parses a serial VTK XML file held in memory; `name` is used in messages.
 pub(crate) fn read_with(bytes: &[u8], name: &str, opts: &ReadOptions) -> Result<VtkRead, VtkError> {
-    assemble(read_raw(bytes, name)?, name, opts)
-}
-
-/// The raw grid of a serial file (or one built in memory) to tetrahedra.
-pub(crate) fn assemble(
-    grid: CellGrid,
-    name: &str,
-    opts: &ReadOptions,
-) -> Result<VtkRead, VtkError> {
-    let grid = finish_grid(grid, name)?;
-    if grid.dataset != "UnstructuredGrid" {
-        crate::vtk::collection::require_volume(&grid, name, "")?;
-    }
-    Ok(assemble_with(grid, name, opts)?)
+    crate::vtk::assemble(read_raw(bytes, name)?, name, opts)
 }
 
 /// The raw grid of a serial VTK XML file of any dataset type read.

@@ -1,8 +1,10 @@
-//! The options a frame is made from, as plain values (the CLI maps its
-//! flags onto them, the Python bindings their keyword arguments).
+//! The options a frame is made from, as plain values: the CLI maps its
+//! flags onto them, the Python package its keyword arguments, the viewer its
+//! pickers, the distributed renderer what its ranks agreed on.
 
 use glam::{DVec3, Vec3};
 use tetray_boundary_bvh::BuildPreset;
+use tetray_core::defaults::{DEFAULT_VIEW, PREINTEGRATION_TABLE_SIZE, PSI_TABLE_SIZE, VIEW_ANGLE};
 use tetray_integrate::{ColorPoint, Method, OpacityMode, OpacityPoint};
 use tetray_project::SortKind;
 
@@ -20,7 +22,7 @@ pub enum TfSource {
         name: Option<String>,
         /// Rescale its scalars to the field's range (ParaView's default).
         rescale: bool,
-        /// Where it came from, for messages ("--tf preset.json").
+        /// Where it came from, for messages (a file name).
         label: String,
     },
     /// Control points over [0, 1], mapped onto `range` (the field's range
@@ -32,10 +34,14 @@ pub enum TfSource {
         opacity: Vec<OpacityPoint>,
         range: Option<(f32, f32)>,
     },
+    /// Control points at the field's own values (an editor's curve).
+    Points {
+        color: Vec<ColorPoint>,
+        opacity: Vec<OpacityPoint>,
+    },
 }
 
-/// The scalar, the transfer function and the ray-integration method (the
-/// CLI's `IntegratorArgs`).
+/// The scalar, the transfer function and the ray-integration method.
 #[derive(Debug, Clone)]
 pub struct IntegratorChoice {
     /// Point field to render; `None`: the first that varies.
@@ -54,7 +60,6 @@ pub struct IntegratorChoice {
 }
 
 impl Default for IntegratorChoice {
-    /// The CLI's defaults.
     fn default() -> Self {
         IntegratorChoice {
             scalar: None,
@@ -62,23 +67,17 @@ impl Default for IntegratorChoice {
             tf: TfSource::Default,
             unit_distance: None,
             opacity_mode: OpacityMode::Exact,
-            psi_size: 1024,
+            psi_size: PSI_TABLE_SIZE,
             riemann_step: None,
-            preintegration_size: 256,
+            preintegration_size: PREINTEGRATION_TABLE_SIZE,
             knot_split: true,
         }
     }
 }
 
-/// Azimuth and elevation (degrees) after the ResetCamera fit when no
-/// camera value is given: an oblique view that shows a volume's depth (a
-/// fit alone looks straight down -z and flattens it).
-pub const DEFAULT_VIEW: (f32, f32) = (30.0, 20.0);
-
-/// VTK/ParaView camera (the CLI's `CameraArgs`). Whatever is not given
-/// comes from a `vtkRenderer::ResetCamera` fit of the mesh bounds, looking
-/// down -z; with nothing given at all, the fit is then turned to
-/// [`DEFAULT_VIEW`].
+/// A VTK/ParaView camera. Whatever is not given comes from a
+/// `vtkRenderer::ResetCamera` fit of the volume's bounds, looking down -z;
+/// with nothing given at all, the fit is then turned to [`DEFAULT_VIEW`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct CameraOptions {
     /// In the file's coordinates (f64; the mesh's origin is subtracted).
@@ -99,7 +98,7 @@ impl Default for CameraOptions {
             camera_position: None,
             focal_point: None,
             view_up: None,
-            view_angle: 30.0,
+            view_angle: VIEW_ANGLE,
             parallel_scale: None,
             azimuth: None,
             elevation: None,
@@ -135,11 +134,13 @@ pub enum RendererChoice {
     Cpu,
     Gpu,
     Project,
-    /// Uniform grids read from `.vti` / STRUCTURED_POINTS files only.
+    /// Image data (`.vti`, legacy STRUCTURED_POINTS) only.
     ShearWarp,
 }
 
 impl RendererChoice {
+    pub const NAMES: &'static str = "auto, cpu, gpu, project, shear-warp";
+
     pub fn name(self) -> &'static str {
         match self {
             RendererChoice::Auto => "auto",
@@ -161,14 +162,38 @@ impl std::str::FromStr for RendererChoice {
             "project" => Ok(RendererChoice::Project),
             "shear-warp" | "shear_warp" => Ok(RendererChoice::ShearWarp),
             _ => Err(format!(
-                "unknown renderer {text:?}: expected one of auto, cpu, gpu, project, shear-warp"
+                "unknown renderer {text:?}: expected one of {}",
+                RendererChoice::NAMES
             )),
         }
     }
 }
 
-/// The renderer's walk limits (the CLI's `WalkArgs` less the renderer
-/// and the thread count).
+/// Which representations of the data [`crate::prepare`] makes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Representation {
+    /// Tetrahedra, for the ray casters and the projection.
+    #[default]
+    Tetrahedra,
+    /// The regular grid alone (no tetrahedra, topology or BVH), for
+    /// shear-warp: image data only.
+    Grid,
+    /// Tetrahedra, and the regular grid too when the file is image data
+    /// (read once): for front ends that offer every renderer.
+    Both,
+}
+
+impl Representation {
+    /// What `renderer` needs.
+    pub fn for_renderer(renderer: RendererChoice) -> Representation {
+        match renderer {
+            RendererChoice::ShearWarp => Representation::Grid,
+            _ => Representation::Tetrahedra,
+        }
+    }
+}
+
+/// The renderer's walk limits.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WalkOptions {
     /// Stop a ray at this opacity, in (0, 1]; 1: never.
@@ -192,6 +217,18 @@ impl Default for WalkOptions {
     }
 }
 
+/// What [`crate::prepare`] makes a frame of, besides the data.
+#[derive(Debug, Clone, Default)]
+pub struct FrameOptions {
+    pub integrator: IntegratorChoice,
+    pub camera: CameraOptions,
+    /// `None`: see [`bvh_preset_for`].
+    pub bvh_preset: Option<BuildPreset>,
+    /// Width and height in pixels (the camera's fit depends on the aspect).
+    pub size: (u32, u32),
+    pub representation: Representation,
+}
+
 /// The BVH preset for a mesh with `faces` boundary faces: the one given, or
 /// very-slow up to 100 000 boundary faces (the best tree, built in well
 /// under a second), fast above (very-slow costs about 3 us per face).
@@ -209,6 +246,16 @@ pub fn bvh_preset_for(given: Option<BuildPreset>, faces: usize) -> BuildPreset {
 pub struct Log<'a> {
     pub info: &'a dyn Fn(String),
     pub warn: &'a dyn Fn(String),
+}
+
+impl Log<'_> {
+    /// A log that drops everything.
+    pub fn quiet() -> Log<'static> {
+        Log {
+            info: &|_| {},
+            warn: &|_| {},
+        }
+    }
 }
 
 #[cfg(test)]
@@ -238,9 +285,13 @@ mod tests {
             Ok(RendererChoice::ShearWarp)
         );
         let err = "raytrace".parse::<RendererChoice>().unwrap_err();
-        assert!(err.contains("auto, cpu, gpu, project, shear-warp"), "{err}");
+        assert!(err.contains(RendererChoice::NAMES), "{err}");
         for choice in [RendererChoice::Auto, RendererChoice::Project] {
             assert_eq!(choice.name().parse::<RendererChoice>(), Ok(choice));
         }
+        assert_eq!(
+            Representation::for_renderer(RendererChoice::ShearWarp),
+            Representation::Grid
+        );
     }
 }

@@ -1,13 +1,13 @@
-//! The one error of this crate. Messages are the CLI's: they name the
-//! option (`--scalar`, `--tf`...) the way `tetray` spells it, because the
-//! Python bindings take the same names (`scalars=`, `tf=`) and the CLI is
-//! the reference users compare with.
+//! The one error of this crate. Messages name what the user gave (a field,
+//! a file, a renderer, a time step), never a command-line flag: the CLI,
+//! the Python package and the viewer each spell their options their own
+//! way.
 
 use thiserror::Error;
 
 /// Anything that stops a frame from being prepared or rendered.
 #[derive(Debug, Error)]
-pub enum FrameError {
+pub enum EngineError {
     /// A file named in the options does not exist.
     #[error("{0}: no such file")]
     NoSuchFile(String),
@@ -30,7 +30,7 @@ pub enum FrameError {
 
     /// A step (scene, camera, integrator, GPU upload, render) failed; the
     /// source says why. Displayed as the step alone, like anyhow's
-    /// context: the chain (see [`FrameError::chain`]) has the reason.
+    /// context: the chain (see [`EngineError::chain`]) has the reason.
     #[error("{context}")]
     Step {
         context: String,
@@ -39,13 +39,13 @@ pub enum FrameError {
     },
 }
 
-impl FrameError {
+impl EngineError {
     /// A failed step with its reason.
     pub fn step(
         context: impl Into<String>,
         source: impl std::error::Error + Send + Sync + 'static,
     ) -> Self {
-        FrameError::Step {
+        EngineError::Step {
             context: context.into(),
             source: Box::new(source),
         }
@@ -73,33 +73,33 @@ impl FrameError {
     pub fn is_io(&self) -> bool {
         matches!(
             self,
-            FrameError::NoSuchFile(_)
-                | FrameError::Read { .. }
-                | FrameError::Load(tetray_io::IoError::Io { .. })
-                | FrameError::Load(tetray_io::IoError::Vtk(tetray_io::VtkError::Io { .. }))
+            EngineError::NoSuchFile(_)
+                | EngineError::Read { .. }
+                | EngineError::Load(tetray_io::IoError::Io { .. })
+                | EngineError::Load(tetray_io::IoError::Vtk(tetray_io::VtkError::Io { .. }))
         )
     }
 }
 
 /// `anyhow`-like context for this crate's results.
 pub(crate) trait Context<T> {
-    fn context(self, context: impl Into<String>) -> Result<T, FrameError>;
-    fn with_context<C: Into<String>>(self, f: impl FnOnce() -> C) -> Result<T, FrameError>;
+    fn context(self, context: impl Into<String>) -> Result<T, EngineError>;
+    fn with_context<C: Into<String>>(self, f: impl FnOnce() -> C) -> Result<T, EngineError>;
 }
 
 impl<T, E: std::error::Error + Send + Sync + 'static> Context<T> for Result<T, E> {
-    fn context(self, context: impl Into<String>) -> Result<T, FrameError> {
-        self.map_err(|e| FrameError::step(context, e))
+    fn context(self, context: impl Into<String>) -> Result<T, EngineError> {
+        self.map_err(|e| EngineError::step(context, e))
     }
-    fn with_context<C: Into<String>>(self, f: impl FnOnce() -> C) -> Result<T, FrameError> {
-        self.map_err(|e| FrameError::step(f(), e))
+    fn with_context<C: Into<String>>(self, f: impl FnOnce() -> C) -> Result<T, EngineError> {
+        self.map_err(|e| EngineError::step(f(), e))
     }
 }
 
-/// Returns early with [`FrameError::Options`].
+/// Returns early with [`EngineError::Options`].
 macro_rules! bail {
     ($($arg:tt)*) => {
-        return Err($crate::FrameError::Options(format!($($arg)*)))
+        return Err($crate::EngineError::Options(format!($($arg)*)))
     };
 }
 pub(crate) use bail;

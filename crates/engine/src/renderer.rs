@@ -1,14 +1,15 @@
-//! The renderer of a [`Setup`]: the CPU reference ray caster, the GPU one,
-//! the cell projection or shear-warp ([`RendererChoice`]).
+//! The renderers of a [`Setup`]: the CPU reference ray caster, the GPU one,
+//! the cell projection or shear-warp ([`RendererChoice`]), each ready to
+//! render frames of it from any camera.
 
 use std::time::Duration;
 
-use tetray_core::{Camera, Image, WalkCounters};
+use tetray_core::{Camera, Image, Method, WalkCounters};
 use tetray_gpu::{GpuContext, GpuIntegrator, GpuRaycaster, GpuRenderOptions, GpuScene};
 use tetray_project::{ProjectOptions, ProjectStats, Projection};
 use tetray_raycast::{render_scalar_with_progress, RenderOptions};
 
-use crate::error::{bail, Context, FrameError};
+use crate::error::{bail, Context, EngineError};
 use crate::options::{RendererChoice, WalkOptions};
 use crate::setup::Setup;
 
@@ -67,27 +68,37 @@ impl Engine {
         choice: impl Into<RendererChoice>,
         setup: &Setup,
         log: &dyn Fn(String),
-    ) -> Result<Engine, FrameError> {
+    ) -> Result<Engine, EngineError> {
         let choice = choice.into();
         let gpu_method = setup.method.has_gpu_kernel();
         // The adapter for a renderer asked for by name, which must be able
         // to run the method.
-        let gpu_context = |flag: &str| -> Result<GpuContext, FrameError> {
+        let gpu_context = |renderer: RendererChoice| -> Result<GpuContext, EngineError> {
             if !gpu_method {
                 bail!(
-                    "--integrator {}: the f64 reference has no GPU kernel; use --renderer cpu",
-                    setup.method
+                    "integrator {}: the f64 reference has no GPU kernel (the {} renderer runs {}); \
+                     use the cpu renderer",
+                    setup.method,
+                    renderer.name(),
+                    Method::gpu_names()
                 );
             }
-            GpuContext::new().with_context(|| format!("--renderer {flag}"))
+            GpuContext::new().with_context(|| format!("renderer {}", renderer.name()))
         };
         match choice {
             RendererChoice::Cpu => Ok(Engine::Cpu),
-            RendererChoice::Gpu => Engine::gpu(gpu_context("gpu")?, setup, log),
-            RendererChoice::Project => Engine::project(gpu_context("project")?, setup, log),
-            RendererChoice::ShearWarp => Ok(Engine::ShearWarp(Box::new(
-                crate::shear_warp::engine(setup, log)?,
-            ))),
+            RendererChoice::Gpu => Engine::gpu(gpu_context(choice)?, setup, log),
+            RendererChoice::Project => Engine::project(gpu_context(choice)?, setup, log),
+            RendererChoice::ShearWarp => {
+                let sw = setup.shear_warp(
+                    setup.method,
+                    &setup.tf,
+                    setup.unit_distance,
+                    setup.integrator_options.opacity_mode,
+                )?;
+                log(crate::grid::describe(&sw));
+                Ok(Engine::ShearWarp(Box::new(sw)))
+            }
             RendererChoice::Auto => {
                 if !gpu_method {
                     log(format!(
@@ -115,7 +126,7 @@ impl Engine {
         }
     }
 
-    fn gpu(ctx: GpuContext, setup: &Setup, log: &dyn Fn(String)) -> Result<Engine, FrameError> {
+    fn gpu(ctx: GpuContext, setup: &Setup, log: &dyn Fn(String)) -> Result<Engine, EngineError> {
         log(format!("renderer: gpu on {}", ctx.adapter_name()));
         let raycaster = GpuRaycaster::new(&ctx).context("compiling the GPU kernel")?;
         let scene = GpuScene::new(&ctx, setup.scene()?).context("uploading the mesh to the GPU")?;
@@ -135,7 +146,11 @@ impl Engine {
         })))
     }
 
-    fn project(ctx: GpuContext, setup: &Setup, log: &dyn Fn(String)) -> Result<Engine, FrameError> {
+    fn project(
+        ctx: GpuContext,
+        setup: &Setup,
+        log: &dyn Fn(String),
+    ) -> Result<Engine, EngineError> {
         let integrator = GpuIntegrator::new(&ctx, &setup.integrator)
             .context("uploading the transfer function to the GPU")?;
         let projection = Projection::new(&ctx, setup.scene()?, &integrator)
@@ -200,11 +215,11 @@ impl Engine {
         walk: impl Into<WalkOptions>,
         (width, height): (u32, u32),
         progress: Option<&(dyn Fn(usize, usize) + Sync)>,
-    ) -> Result<Frame, FrameError> {
+    ) -> Result<Frame, EngineError> {
         let walk: WalkOptions = walk.into();
         match self {
             Engine::ShearWarp(sw) => {
-                crate::shear_warp::render(sw, camera, walk.early_termination, (width, height))
+                crate::grid::render(sw, camera, walk.early_termination, (width, height))
             }
             Engine::Cpu => {
                 let options = RenderOptions {

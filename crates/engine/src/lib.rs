@@ -1,0 +1,40 @@
+//! The one door into the renderers: every front end (the CLI, the Python
+//! package, the viewer, the distributed and in-situ renderers) makes its
+//! frames here, from plain options, so the same options give the same image
+//! everywhere.
+//!
+//! [`Source`] (a file, the embedded Blunt Fin, arrays in memory, a mesh
+//! already made) -> [`prepare`] -> [`Setup`] (the [`Volume`]: tetrahedra,
+//! a regular grid or both; the camera, the transfer function and the
+//! integrator, with the defaults of the whole volume's [`Extent`]) ->
+//! [`Engine`] (CPU or GPU ray caster, cell projection, shear-warp) ->
+//! [`Frame`]; [`measure`] times frames; [`segment`] integrates one ray
+//! segment by any method.
+//!
+//! Nothing here parses command lines or prints: progress and warnings go
+//! to the caller's [`Log`], and errors name what the user gave (a field, a
+//! file, a renderer), not a flag.
+
+mod camera;
+mod error;
+mod grid;
+mod measure;
+mod options;
+mod renderer;
+mod segment;
+mod setup;
+mod source;
+pub mod tf;
+
+pub use camera::{build_camera, warn_if_inside};
+pub use error::EngineError;
+pub use measure::{measure, median, Measured, Timing};
+pub use options::{
+    bvh_preset_for, CameraOptions, FrameOptions, IntegratorChoice, Log, RendererChoice,
+    Representation, TfSource, WalkOptions,
+};
+pub use renderer::{Engine, Frame, FrameStats, GpuEngine, ProjectEngine};
+pub use segment::{segment, SegmentOptions};
+pub use setup::{prepare, prepare_mesh, prepare_part, Extent, Setup, Volume, SOLID};
+pub use source::{load, plural, MeshInput, Source, EMBEDDED_NAME};
+pub use tetray_core::defaults::DEFAULT_VIEW;
