@@ -10,12 +10,6 @@ use std::process::ExitCode;
 
 use clap::Parser;
 
-/// Large freed blocks are kept for the next large allocation (see
-/// `tetray_memory`): loading a mesh faults its memory in about once, not once
-/// per stage. The setup returns them once the scene is built.
-#[global_allocator]
-static ALLOCATOR: tetray_memory::Recycling = tetray_memory::Recycling::new();
-
 fn main() -> ExitCode {
     let args = match cli::Cli::try_parse() {
         Ok(args) => args,

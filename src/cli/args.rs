@@ -346,7 +346,7 @@ pub struct RenderArgs {
     pub walk: WalkArgs,
     #[cfg(feature = "mpi")]
     #[command(flatten)]
-    pub distributed: super::distributed::DistributedArgs,
+    pub distributed: DistributedArgs,
 }
 
 impl RenderArgs {
@@ -360,6 +360,36 @@ impl RenderArgs {
             args: RenderArgs,
         }
         Wrapper::parse_from(["tetray"]).args
+    }
+}
+
+#[cfg(feature = "mpi")]
+/// The flags of a distributed run.
+#[derive(Debug, Clone, Args)]
+pub struct DistributedArgs {
+    /// Render distributed over the MPI ranks even when there is one (it is
+    /// by default whenever mpirun starts more than one).
+    #[arg(long)]
+    pub distributed: bool,
+    /// Edge in pixels of the image tiles dealt out to the ranks, which
+    /// composite the fragments of their tiles' pixels.
+    #[arg(long, value_name = "PIXELS", default_value_t = tetray_distributed::DEFAULT_TILE,
+          value_parser = clap::value_parser!(u32).range(1..))]
+    pub tile: u32,
+}
+
+#[cfg(feature = "mpi")]
+impl DistributedArgs {
+    /// Whether to render distributed: `--distributed`, or a launcher's
+    /// world of more than one process (Open MPI's and MPICH's variables,
+    /// read before initialising MPI so a plain run never does).
+    pub fn wanted(&self) -> bool {
+        let launched = ["OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE"]
+            .iter()
+            .filter_map(|v| std::env::var(v).ok())
+            .filter_map(|v| v.parse::<usize>().ok())
+            .any(|n| n > 1);
+        self.distributed || launched
     }
 }
 

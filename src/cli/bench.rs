@@ -29,7 +29,7 @@ pub struct BenchArgs {
     pub orbit_step: Option<f32>,
     #[cfg(feature = "mpi")]
     #[command(flatten)]
-    pub distributed: super::distributed::DistributedArgs,
+    pub distributed: super::args::DistributedArgs,
 }
 
 #[derive(Debug, Serialize)]
@@ -96,10 +96,6 @@ struct ProjectionJson {
 }
 
 pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
-    #[cfg(feature = "mpi")]
-    if let Some(done) = super::distributed::bench(args) {
-        return done;
-    }
     scene::configure_threads(args.walk.threads)?;
     let frame = scene::FrameArgs {
         mesh: &args.mesh,

@@ -63,14 +63,10 @@ pub struct CompareArgs {
     pub threads: Option<u16>,
     #[cfg(feature = "mpi")]
     #[command(flatten)]
-    pub distributed: super::distributed::DistributedArgs,
+    pub distributed: super::args::DistributedArgs,
 }
 
 pub fn run(args: &CompareArgs) -> anyhow::Result<()> {
-    #[cfg(feature = "mpi")]
-    if let Some(done) = super::distributed::compare(args) {
-        return done;
-    }
     scene::configure_threads(args.threads)?;
     let log = |line: String| println!("{line}");
     let walk = WalkArgs {

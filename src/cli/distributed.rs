@@ -25,34 +25,6 @@ use tetray_raycast::RenderOptions;
 use super::args::{CameraArgs, IntegratorArgs, MeshArgs, RendererArg, WalkArgs};
 use super::scene;
 
-/// The flags of a distributed run.
-#[derive(Debug, Clone, Args)]
-pub struct DistributedArgs {
-    /// Render distributed over the MPI ranks even when there is one (it is
-    /// by default whenever mpirun starts more than one).
-    #[arg(long)]
-    pub distributed: bool,
-    /// Edge in pixels of the image tiles dealt out to the ranks, which
-    /// composite the fragments of their tiles' pixels.
-    #[arg(long, value_name = "PIXELS", default_value_t = tetray_distributed::DEFAULT_TILE,
-          value_parser = clap::value_parser!(u32).range(1..))]
-    pub tile: u32,
-}
-
-impl DistributedArgs {
-    /// Whether to render distributed: `--distributed`, or a launcher's
-    /// world of more than one process (Open MPI's and MPICH's variables,
-    /// read before initialising MPI so a plain run never does).
-    pub fn wanted(&self) -> bool {
-        let launched = ["OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE"]
-            .iter()
-            .filter_map(|v| std::env::var(v).ok())
-            .filter_map(|v| v.parse::<usize>().ok())
-            .any(|n| n > 1);
-        self.distributed || launched
-    }
-}
-
 /// What `prepare` takes, borrowed from any of the three commands.
 struct FrameInput<'a> {
     mesh: &'a MeshArgs,
@@ -142,15 +114,8 @@ fn frame<C: Communicator>(
     Ok(render_setup(comm, &part.setup, camera, opts, tile)?)
 }
 
-/// `tetray render`, distributed; `None` when not asked for.
-pub fn render(args: &super::args::RenderArgs) -> Option<anyhow::Result<()>> {
-    if !args.distributed.wanted() {
-        return None;
-    }
-    Some(run_render(args))
-}
-
-fn run_render(args: &super::args::RenderArgs) -> anyhow::Result<()> {
+/// `tetray render`, distributed.
+pub fn render(args: &super::args::RenderArgs) -> anyhow::Result<()> {
     let output = &args.output.output;
     let format = super::render::image_format(output)?;
     scene::configure_threads(args.walk.threads)?;
@@ -189,14 +154,6 @@ fn run_render(args: &super::args::RenderArgs) -> anyhow::Result<()> {
     })
 }
 
-/// `tetray bench`, distributed: timed frames as JSON on rank 0.
-pub fn bench(args: &super::bench::BenchArgs) -> Option<anyhow::Result<()>> {
-    if !args.distributed.wanted() {
-        return None;
-    }
-    Some(run_bench(args))
-}
-
 /// The bench's JSON: medians over the frames of the slowest rank's stage
 /// times, and the per-fragment and per-byte costs the README's model of
 /// larger runs uses.
@@ -233,7 +190,8 @@ struct BenchJson {
     setup_s: f64,
 }
 
-fn run_bench(args: &super::bench::BenchArgs) -> anyhow::Result<()> {
+/// `tetray bench`, distributed: timed frames as JSON on rank 0.
+pub fn bench(args: &super::bench::BenchArgs) -> anyhow::Result<()> {
     scene::configure_threads(args.walk.threads)?;
     with_world(|world| {
         let input = FrameInput {
@@ -305,15 +263,6 @@ fn run_bench(args: &super::bench::BenchArgs) -> anyhow::Result<()> {
     })
 }
 
-/// `tetray compare`, distributed: the composited image against the
-/// single-process CPU render of the whole mesh (rank 0 renders it too).
-pub fn compare(args: &super::compare::CompareArgs) -> Option<anyhow::Result<()>> {
-    if !args.distributed.wanted() {
-        return None;
-    }
-    Some(run_compare(args))
-}
-
 #[derive(Debug, Serialize)]
 struct CompareJson {
     ranks: usize,
@@ -330,7 +279,9 @@ struct CompareJson {
     single_ms: f64,
 }
 
-fn run_compare(args: &super::compare::CompareArgs) -> anyhow::Result<()> {
+/// `tetray compare`, distributed: the composited image against the
+/// single-process CPU render of the whole mesh (rank 0 renders it too).
+pub fn compare(args: &super::compare::CompareArgs) -> anyhow::Result<()> {
     scene::configure_threads(args.threads)?;
     let walk = WalkArgs {
         renderer: RendererArg::Cpu,

@@ -20,6 +20,12 @@ use clap::{Parser, Subcommand};
 
 use args::RenderArgs;
 
+/// Large freed blocks are kept for the next large allocation (see
+/// `tetray_memory`): loading a mesh faults its memory in about once, not once
+/// per stage. The setup returns them once the scene is built.
+#[global_allocator]
+pub(crate) static ALLOCATOR: tetray_memory::Recycling = tetray_memory::Recycling::new();
+
 /// Volume rendering of unstructured tetrahedral meshes by walking each ray
 /// cell to cell (Moreland 2004). With no command, renders the embedded
 /// Blunt Fin dataset to tetray.png.
@@ -58,6 +64,19 @@ pub enum Command {
 
 /// Runs the parsed command line.
 pub fn run(cli: Cli) -> anyhow::Result<()> {
+    // Distributed over MPI ranks when asked, or when mpirun started more
+    // than one.
+    #[cfg(feature = "mpi")]
+    match &cli.command {
+        Some(Command::Render(args)) if args.distributed.wanted() => {
+            return distributed::render(args)
+        }
+        Some(Command::Bench(args)) if args.distributed.wanted() => return distributed::bench(args),
+        Some(Command::Compare(args)) if args.distributed.wanted() => {
+            return distributed::compare(args)
+        }
+        _ => {}
+    }
     match cli.command {
         None => render::run(&RenderArgs::defaults()),
         Some(Command::Render(args)) => render::run(&args),

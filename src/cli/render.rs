@@ -25,10 +25,6 @@ pub(super) enum ImageFormat {
 }
 
 pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
-    #[cfg(feature = "mpi")]
-    if let Some(done) = super::distributed::render(args) {
-        return done;
-    }
     let output = &args.output.output;
     let format = image_format(output)?;
     scene::configure_threads(args.walk.threads)?;

@@ -15,7 +15,7 @@ use super::args::{CameraArgs, IntegratorArgs, MeshArgs, WalkArgs};
 /// on without building a scene from it: `info`, MPI).
 pub fn load_mesh(args: &MeshArgs) -> anyhow::Result<MeshInput> {
     let input = tetray_engine::load(args.source()?);
-    crate::ALLOCATOR.release();
+    super::ALLOCATOR.release();
     Ok(input?)
 }
 
@@ -80,7 +80,7 @@ pub fn prepare_with(
     };
     let setup = tetray_engine::prepare(mesh.source()?, options, log);
     // The scene is built in the blocks the load freed; now they go back.
-    crate::ALLOCATOR.release();
+    super::ALLOCATOR.release();
     Ok(setup?)
 }
 

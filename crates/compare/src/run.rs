@@ -80,10 +80,10 @@ pub fn run(
             method: Some(Integrator::Reference),
             sort: None,
         };
-        let reference = render(setup, &reference, options, log)?;
+        let reference = render(setup, &reference, original, options, log)?;
         let methods = specs
             .iter()
-            .map(|spec| render(setup, spec, options, log))
+            .map(|spec| render(setup, spec, original, options, log))
             .collect::<Result<Vec<_>, _>>()?;
         let title = format!("{} ({} tetrahedra)", setup.name(), setup.tet_count());
         compare(&title, reference, methods)
@@ -92,13 +92,16 @@ pub fn run(
     result
 }
 
+/// The frame of `spec` (`method`: the integrator of a spec that names
+/// none).
 fn render(
     setup: &mut Setup,
     spec: &Spec,
+    method: Integrator,
     options: RunOptions,
     log: &dyn Fn(String),
 ) -> Result<Method, CompareError> {
-    let method = spec.method.unwrap_or(setup.method);
+    let method = spec.method.unwrap_or(method);
     setup.use_method(method)?;
     let setup: &Setup = setup;
     // No early termination: every method integrates every ray to its end,

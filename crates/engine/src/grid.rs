@@ -15,9 +15,10 @@ use tetray_mesh::{centring_origin, default_field_of, mean_tet_chord};
 use tetray_shearwarp::{Classification, ClassifyOptions, RegularGrid, ShearWarp, ShearWarpOptions};
 
 use crate::error::{bail, Context, EngineError};
+use crate::fields::{unknown_field, SOLID};
+use crate::frame::{Frame, FrameStats};
 use crate::options::{FrameOptions, Log};
-use crate::renderer::{Frame, FrameStats};
-use crate::setup::{unknown_field, Extent, Setup, Volume, SOLID};
+use crate::setup::{Extent, Setup, Volume};
 use crate::source::{check_file, plural, Source};
 
 /// Reads the image data of `source` as its regular grid alone and makes

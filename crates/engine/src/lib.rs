@@ -17,9 +17,12 @@
 
 mod camera;
 mod error;
+mod fields;
+mod frame;
 mod grid;
 mod measure;
 mod options;
+mod prepare;
 mod renderer;
 mod segment;
 mod setup;
@@ -28,13 +31,16 @@ pub mod tf;
 
 pub use camera::{build_camera, warn_if_inside};
 pub use error::EngineError;
+pub use fields::SOLID;
+pub use frame::{Frame, FrameStats};
 pub use measure::{measure, median, Measured, Timing};
 pub use options::{
     bvh_preset_for, CameraOptions, FrameOptions, IntegratorChoice, Log, RendererChoice,
     Representation, TfSource, WalkOptions,
 };
-pub use renderer::{Engine, Frame, FrameStats, GpuEngine, ProjectEngine};
+pub use prepare::prepare;
+pub use renderer::{Engine, GpuEngine, ProjectEngine};
 pub use segment::{segment, SegmentOptions};
-pub use setup::{prepare, prepare_mesh, prepare_part, Extent, Setup, Volume, SOLID};
+pub use setup::{prepare_mesh, prepare_part, Extent, Setup, Volume};
 pub use source::{load, plural, MeshInput, Source, EMBEDDED_NAME};
 pub use tetray_core::defaults::DEFAULT_VIEW;

@@ -6,8 +6,9 @@ use std::time::Duration;
 use tetray_core::{Camera, WalkCounters};
 
 use crate::error::{Context, EngineError};
+use crate::frame::{Frame, FrameStats};
 use crate::options::WalkOptions;
-use crate::renderer::{Engine, Frame, FrameStats};
+use crate::renderer::Engine;
 use crate::setup::Setup;
 
 /// How frames are timed.

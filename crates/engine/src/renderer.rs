@@ -2,14 +2,13 @@
 //! the cell projection or shear-warp ([`RendererChoice`]), each ready to
 //! render frames of it from any camera.
 
-use std::time::Duration;
-
-use tetray_core::{Camera, Image, Method, WalkCounters};
+use tetray_core::{Camera, Method, WalkCounters};
 use tetray_gpu::{GpuContext, GpuIntegrator, GpuRaycaster, GpuRenderOptions, GpuScene};
-use tetray_project::{ProjectOptions, ProjectStats, Projection};
+use tetray_project::{ProjectOptions, Projection};
 use tetray_raycast::{render_scalar_with_progress, RenderOptions};
 
 use crate::error::{bail, Context, EngineError};
+use crate::frame::{Frame, FrameStats};
 use crate::options::{RendererChoice, WalkOptions};
 use crate::setup::Setup;
 
@@ -34,29 +33,6 @@ pub struct GpuEngine {
     raycaster: GpuRaycaster,
     scene: GpuScene,
     integrator: GpuIntegrator,
-}
-
-/// What either renderer reports of a frame.
-#[derive(Debug, Clone, Copy, Default)]
-pub struct FrameStats {
-    /// What the walk counted (for the projection: rays are pixels, lit
-    /// pixels the rays that hit, draws the steps; for shear-warp: slabs
-    /// composited the segments).
-    pub counters: WalkCounters,
-    /// The CPU ray caster took its rays' boundary entries from per-pixel
-    /// lists, not BVH queries.
-    pub entry_lists: bool,
-    /// Render time: the GPU pass by timestamp queries where the adapter has
-    /// them, else the wall time of the frame; for the projection, its sort
-    /// and draw list (CPU) plus its render pass.
-    pub elapsed: Duration,
-    /// The projection's own counters and stage times.
-    pub project: Option<ProjectStats>,
-}
-
-pub struct Frame {
-    pub image: Image,
-    pub stats: FrameStats,
 }
 
 impl Engine {

@@ -18,14 +18,10 @@ use tetray_scene::Scene;
 
 use crate::camera::{build_camera, warn_if_inside};
 use crate::error::{bail, Context, EngineError};
-use crate::options::{
-    bvh_preset_for, CameraOptions, FrameOptions, IntegratorChoice, Log, Representation,
-};
-use crate::source::{load, load_image_data, MeshInput, Source};
+use crate::fields::{unknown_field, SOLID};
+use crate::options::{bvh_preset_for, CameraOptions, FrameOptions, IntegratorChoice, Log};
+use crate::source::MeshInput;
 use crate::tf;
-
-/// The name of the field added to a mesh without fields.
-pub const SOLID: &str = "solid";
 
 /// What a frame is rendered from.
 pub enum Volume {
@@ -78,30 +74,6 @@ pub struct Setup {
     pub load_time: Duration,
     pub scene_time: Duration,
     pub integrator_time: Duration,
-}
-
-/// Loads `source` and makes everything a frame needs, reporting each step
-/// through `log`: the representations `options` ask for, the camera (before
-/// the integrator's tables, so a bad camera fails fast), the transfer
-/// function and the integrator.
-pub fn prepare(source: Source, options: &FrameOptions, log: Log<'_>) -> Result<Setup, EngineError> {
-    match options.representation {
-        Representation::Grid => crate::grid::prepare_grid(source, options, log),
-        Representation::Both if source.is_image_data()? => {
-            let Source::File {
-                path,
-                options: load_options,
-            } = source
-            else {
-                unreachable!("only files are image data");
-            };
-            let (input, image) = load_image_data(&path, &load_options)?;
-            prepare_mesh(input, Some(image), options, log)
-        }
-        Representation::Both | Representation::Tetrahedra => {
-            prepare_mesh(load(source)?, None, options, log)
-        }
-    }
 }
 
 /// [`prepare`] for a mesh already loaded (with its image grid when it is
@@ -430,16 +402,4 @@ fn pick_field(input: &MeshInput, scalar: Option<&str>) -> Result<Option<String>,
         Some(name) if fields.iter().any(|f| f.name == name) => Ok(Some(name.to_string())),
         Some(name) => Err(unknown_field(name, &input.name, fields)),
     }
-}
-
-/// A field asked for that the data does not have, listing what it has.
-pub(crate) fn unknown_field(name: &str, data: &str, fields: &[ScalarField]) -> EngineError {
-    if fields.is_empty() {
-        return EngineError::Options(format!("field {name:?}: {data} has no point scalar field"));
-    }
-    let names: Vec<String> = fields.iter().map(|f| format!("{:?}", f.name)).collect();
-    EngineError::Options(format!(
-        "field {name:?}: {data} has no such point field; it has {}",
-        names.join(", ")
-    ))
 }

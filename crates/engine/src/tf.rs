@@ -12,8 +12,8 @@ use tetray_integrate::{
 };
 
 use crate::error::{bail, Context, EngineError};
+use crate::fields::SOLID;
 use crate::options::{IntegratorChoice, Log, TfSource};
-use crate::setup::SOLID;
 
 /// The transfer function of `source`: a ParaView preset (rescaled to the
 /// field's range `(lo, hi)` unless asked not to), control points, a uniform
@@ -89,7 +89,7 @@ pub fn paraview_preset(
     rescale: Option<(f32, f32)>,
 ) -> Result<(TransferFunction, Vec<String>), EngineError> {
     TransferFunction::from_paraview_json_with_report(text, name, rescale)
-        .context("the ParaView preset")
+        .map_err(|e| EngineError::Options(e.to_string()))
 }
 
 /// Points over [0, 1] mapped onto `[lo, hi]`; none at all: the default

@@ -78,6 +78,18 @@ pub struct Params {
     pub face_offset: u32,
 }
 
+/// What the frame parameters need to know of a mesh and its buffers.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SceneLayout {
+    pub bounds: (glam::Vec3, glam::Vec3),
+    pub scene_abs_max: f32,
+    pub tet_count: usize,
+    pub tet_chunk: u32,
+    pub point_chunk: u32,
+    pub prim_offset: u32,
+    pub face_offset: u32,
+}
+
 /// WGSL `Tile`: the pixels of one dispatch.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Pod, Zeroable)]
 #[repr(C)]

@@ -28,9 +28,9 @@ mod upload;
 
 pub use context::{quiet_device_select, GpuContext};
 pub use error::GpuError;
+pub use layout::SceneLayout;
 pub use render::{
-    frame_params, walk_counters, FrameJob, GpuFrame, GpuRaycaster, GpuRenderOptions, GpuStats,
-    SceneLayout, TILE,
+    frame_params, walk_counters, FrameJob, GpuFrame, GpuRaycaster, GpuRenderOptions, GpuStats, TILE,
 };
 pub use target::GpuTarget;
 pub use upload::{GpuIntegrator, GpuScene, IntegratorData, PreintParams, SceneData};

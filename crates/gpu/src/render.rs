@@ -8,7 +8,7 @@ use std::time::{Duration, Instant};
 use tetray_core::{Camera, Image, WalkCounters};
 use wgpu::util::DeviceExt;
 
-use crate::layout::{self, Params, Tile, ViewParams};
+use crate::layout::{self, Params, SceneLayout, Tile, ViewParams};
 use crate::readback::{read_buffer, readback_buffer, PassTimestamps};
 use crate::shaders::raycast_source;
 use crate::upload::{GpuIntegrator, GpuScene, IntegratorData};
@@ -329,18 +329,6 @@ impl GpuStats {
             wall_time,
         }
     }
-}
-
-/// What the frame parameters need to know of a mesh and its buffers.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SceneLayout {
-    pub bounds: (glam::Vec3, glam::Vec3),
-    pub scene_abs_max: f32,
-    pub tet_count: usize,
-    pub tet_chunk: u32,
-    pub point_chunk: u32,
-    pub prim_offset: u32,
-    pub face_offset: u32,
 }
 
 /// The frame's parameters (WGSL `Params`) for `camera` and `opts`.

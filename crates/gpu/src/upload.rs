@@ -12,8 +12,7 @@ use tetray_integrate::{GammaSpacing, Method, Model, ScalarIntegrator};
 use tetray_scene::Scene;
 use wgpu::util::DeviceExt;
 
-use crate::layout::{IntegratorParams, INTERVAL_ENTRIES, PREINT_ENTRIES};
-use crate::render::SceneLayout;
+use crate::layout::{IntegratorParams, SceneLayout, INTERVAL_ENTRIES, PREINT_ENTRIES};
 use crate::{GpuContext, GpuError};
 
 /// Storage bindings an array may be split over.

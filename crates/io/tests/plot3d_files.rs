@@ -421,8 +421,20 @@ fn load_dispatches_by_name() {
         .changes()
         .unwrap()
         .contains("1 flat tetrahedra dropped"));
-    // Unknown names.
-    let e = load(&dir.join("mesh.obj"), &LoadOptions::default()).unwrap_err();
+    // Unknown names: the content decides; a file it does not name either
+    // is an error saying what the file starts with, a missing one an I/O
+    // error.
+    let obj = dir.join("mesh.obj");
+    std::fs::write(&obj, "v 0 0 0\nv 1 0 0\n").unwrap();
+    let e = load(&obj, &LoadOptions::default()).unwrap_err();
     assert!(matches!(e, IoError::UnknownFormat { .. }), "{e}");
+    assert!(e.to_string().contains("it starts with \"v 0 0 0"), "{e}");
+    let e = load(&dir.join("none.obj"), &LoadOptions::default()).unwrap_err();
+    assert!(matches!(e, IoError::Io { .. }), "{e}");
+    // A legacy file under another name is read by its content.
+    let renamed = dir.join("mesh.dat");
+    std::fs::copy(&vtk, &renamed).unwrap();
+    let by_content = load(&renamed, &LoadOptions::default()).unwrap();
+    assert_eq!(by_content.mesh.tets, loaded.mesh.tets);
     std::fs::remove_dir_all(&dir).unwrap();
 }

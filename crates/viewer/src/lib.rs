@@ -22,6 +22,7 @@ pub mod present;
 pub mod projection;
 mod screenshot;
 pub mod tf_editor;
+mod window;
 
 use std::sync::Arc;
 

@@ -114,3 +114,11 @@ fn read(bytes: Vec<u8>, name: &str, opts: &ExodusOptions) -> Result<ExodusRead, 
         tet_cells: read.tet_cells,
     })
 }
+
+/// A kept (volume) block: where its elements start among the grid's cells.
+pub(crate) struct KeptBlock {
+    /// 1-based position among the file's blocks (the `N` of `connectN`).
+    pub number: usize,
+    pub first_cell: usize,
+    pub cells: usize,
+}

@@ -5,7 +5,7 @@
 use super::elements::{family, vtk_cell, Family, VtkCell};
 use super::nc::{times, Nc};
 use super::vars::{choose_step, element_variables, nodal_variables, read_times};
-use super::{ElementBlock, ExodusError, ExodusOptions};
+use super::{ElementBlock, ExodusError, ExodusOptions, KeptBlock};
 use tetray_mesh::cells::CellGrid;
 
 /// What the reader found besides the grid.
@@ -15,14 +15,6 @@ pub(super) struct ExodusMeta {
     pub time_step: Option<usize>,
     pub blocks: Vec<ElementBlock>,
     pub container: String,
-}
-
-/// A kept (volume) block: where its elements start among the grid's cells.
-pub(super) struct KeptBlock {
-    /// 1-based position among the file's blocks (the `N` of `connectN`).
-    pub number: usize,
-    pub first_cell: usize,
-    pub cells: usize,
 }
 
 pub(super) fn read_raw(

@@ -4,8 +4,7 @@
 //! array.
 
 use super::nc::{times, Nc};
-use super::read::KeptBlock;
-use super::{ExodusError, ExodusOptions};
+use super::{ExodusError, ExodusOptions, KeptBlock};
 use tetray_mesh::cells::CellArray;
 
 /// The stored times (`time_whole`), one per time step.

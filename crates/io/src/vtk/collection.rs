@@ -11,7 +11,7 @@ use quick_xml::events::{BytesStart, Event};
 use quick_xml::Reader;
 use rayon::prelude::*;
 
-use super::xml::read as vtu_read;
+use super::xml::read_raw as read_xml_raw;
 use super::xml::tree::find;
 use super::{read_path, ReadOptions, VtkError, VtkRead};
 use tetray_mesh::cells::{assemble_with, CellGrid};
@@ -198,7 +198,7 @@ pub(super) fn piece_paths(path: &Path) -> Result<Vec<PathBuf>, VtkError> {
 /// its messages name start with the file, as several files are joined.
 pub(super) fn serial_raw(path: &Path) -> Result<CellGrid, VtkError> {
     let name = path.display().to_string();
-    let mut grid = vtu_read::read_raw(&read_path(path)?, &name)?;
+    let mut grid = read_xml_raw(&read_path(path)?, &name)?;
     drop_ghosts(&mut grid, &name)?;
     for array in grid.point_arrays.iter_mut().chain(&mut grid.cell_arrays) {
         array.section = format!("{name}, {}", array.section);

@@ -7,19 +7,7 @@ use std::path::Path;
 use tetray_mesh::cells::{per_tuple, to_f32, CellGrid};
 use tetray_mesh::ScalarField;
 
-use super::{ReadOptions, VtkError, VtkRead};
-
-/// Where the points of an image lie: point `(i, j, k)` (from 0) at
-/// `origin + direction * ((i, j, k) * spacing)`, `direction` row-major.
-/// The readers report it beside their [`CellGrid`] for a single-piece
-/// ImageData / STRUCTURED_POINTS.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct ImageGeometry {
-    pub dims: [usize; 3],
-    pub origin: [f64; 3],
-    pub spacing: [f64; 3],
-    pub direction: [f64; 9],
-}
+use super::{ImageGeometry, ReadOptions, VtkError, VtkRead};
 
 /// An axis-aligned image: point `(i, j, k)` at `origin + (i, j, k) *
 /// spacing`, point fields in VTK order (`i` fastest).
@@ -67,7 +55,7 @@ fn read_raw_image(path: &Path, file: &str) -> Result<(CellGrid, Option<ImageGeom
         if doc.dataset != "UnstructuredGrid" && !doc.pieces.is_empty() {
             super::xml::structured::read_raw_image(&mut doc, file)
         } else {
-            Ok((super::xml::read::read_raw(&bytes, file)?, None))
+            Ok((super::xml::read_raw(&bytes, file)?, None))
         }
     } else {
         super::legacy::read::read_raw(&bytes, file)

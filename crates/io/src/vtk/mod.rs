@@ -51,6 +51,18 @@ pub enum VtuEncoding {
     AppendedBase64,
 }
 
+/// Where the points of an image lie: point `(i, j, k)` (from 0) at
+/// `origin + direction * ((i, j, k) * spacing)`, `direction` row-major.
+/// The readers report it beside their [`CellGrid`] for a single-piece
+/// ImageData / STRUCTURED_POINTS.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct ImageGeometry {
+    pub dims: [usize; 3],
+    pub origin: [f64; 3],
+    pub spacing: [f64; 3],
+    pub direction: [f64; 9],
+}
+
 /// The one step from a file's raw cells to tetrahedra, for every reader
 /// of this module: ghost cells and global ids handled, a structured grid
 /// without volume cells refused, cells split.
@@ -111,7 +123,7 @@ pub fn read_vtu_file_with(path: &Path, opts: &ReadOptions) -> Result<VtkRead, Vt
     let name = path.display().to_string();
     // The file's bytes are freed before the cells become tetrahedra: not
     // both in memory at the peak.
-    let grid = xml::read::read_raw(&read_path(path)?, &name)?;
+    let grid = xml::read_raw(&read_path(path)?, &name)?;
     assemble(grid, &name, opts)
 }
 
@@ -126,7 +138,7 @@ pub fn read_vtu_bytes_with(
     name: &str,
     opts: &ReadOptions,
 ) -> Result<VtkRead, VtkError> {
-    xml::read::read_with(bytes, name, opts)
+    xml::read_with(bytes, name, opts)
 }
 
 /// Assembles a raw grid held in memory as [`read_vtu_bytes_with`] does the

@@ -38,6 +38,7 @@ mod assemble;
 mod cell_table;
 mod cell_types;
 mod error;
+mod grid;
 mod pieces;
 mod poly_grid;
 mod polyhedron;
@@ -45,9 +46,10 @@ mod split;
 mod split_quadratic;
 mod structured_grid;
 
-pub use assemble::{assemble_at, assemble_with, per_tuple, to_f32, CellArray, CellGrid};
+pub use assemble::{assemble_at, assemble_with, per_tuple, to_f32};
 pub use cell_types::{classify, type_name, CellKind};
 pub use error::CellError;
+pub use grid::{CellArray, CellGrid};
 pub use pieces::{drop_ghosts, drop_global_ids, finish_grid, merge_arrays, weld};
 pub use poly_grid::{checked_faces, keep_cell_faces, separate_inline_faces, shift_faces};
 pub use polyhedron::{

@@ -17,7 +17,7 @@
 
 use std::collections::HashMap;
 
-use super::assemble::{CellArray, CellGrid};
+use super::grid::{CellArray, CellGrid};
 use super::poly_grid::{keep_cell_faces, separate_inline_faces, shift_faces};
 use super::CellError;
 

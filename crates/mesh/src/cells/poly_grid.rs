@@ -4,7 +4,7 @@
 //! faces are keyed by cell index and hold point indices, like the
 //! connectivity).
 
-use super::assemble::CellGrid;
+use super::grid::CellGrid;
 use super::polyhedron::{check_closed, parse_face_stream, PolyhedronFaces};
 use super::CellError;
 

@@ -10,7 +10,7 @@
 //! point along an axis) gives quadrilaterals, lines or a vertex: no volume
 //! cell, which the readers report.
 
-use super::assemble::CellGrid;
+use super::grid::CellGrid;
 use super::CellError;
 
 /// VTK cell type ids used here (vtkCellType.h).

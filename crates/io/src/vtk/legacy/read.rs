@@ -11,8 +11,8 @@
 
 use super::lex::{decode_name, Cursor};
 use super::structured::{Kind, Structured};
-use crate::vtk::image_grid::ImageGeometry;
 use crate::vtk::numeric::Scalar;
+use crate::vtk::ImageGeometry;
 use crate::vtk::{ReadOptions, VtkError, VtkRead};
 use tetray_mesh::cells::{CellArray, CellGrid};
 

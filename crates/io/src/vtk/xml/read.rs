@@ -3,36 +3,16 @@
 //! `.vtr`, `.vti`) go to `structured.rs`.
 
 use super::data::ArrayDecoder;
-use super::structured as xml_structured;
-use super::tree::{self, XmlArray, XmlPiece};
+use super::tree::{VtuDoc, XmlArray, XmlPiece};
 use crate::vtk::numeric::Scalar;
-use crate::vtk::{ReadOptions, VtkError, VtkRead};
+use crate::vtk::VtkError;
 use tetray_mesh::cells as polyhedron;
 use tetray_mesh::cells::merge_arrays as merge;
 use tetray_mesh::cells::{CellArray, CellGrid};
 
-/// Parses a serial VTK XML file held in memory; `name` is used in messages.
-pub(crate) fn read_with(bytes: &[u8], name: &str, opts: &ReadOptions) -> Result<VtkRead, VtkError> {
-    crate::vtk::assemble(read_raw(bytes, name)?, name, opts)
-}
-
-/// The raw grid of a serial VTK XML file of any dataset type read.
-pub(crate) fn read_raw(bytes: &[u8], name: &str) -> Result<CellGrid, VtkError> {
-    let mut doc = tree::parse(bytes, name)?;
-    if doc.pieces.is_empty() {
-        return Err(VtkError::Invalid {
-            file: name.into(),
-            section: format!("<{}>", doc.dataset),
-            message: "no <Piece> element".into(),
-        });
-    }
-    if doc.dataset != "UnstructuredGrid" {
-        return xml_structured::read_raw(&mut doc, name);
-    }
-    let decoder = ArrayDecoder {
-        file: name,
-        doc: &doc,
-    };
+/// The raw grid of a parsed `.vtu` (UnstructuredGrid) file.
+pub(crate) fn read_unstructured(doc: &VtuDoc, name: &str) -> Result<CellGrid, VtkError> {
+    let decoder = ArrayDecoder { file: name, doc };
     let mut grid = CellGrid {
         points_section: "Points".into(),
         dataset: "UnstructuredGrid",

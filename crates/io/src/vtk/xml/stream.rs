@@ -8,7 +8,7 @@ use std::io::{self, BufWriter, Write};
 
 use glam::Vec3;
 
-use super::write::escape;
+use super::tree::escape;
 use tetray_mesh::ScalarField;
 
 /// Tetrahedra per chunk when writing from a slice.

@@ -14,7 +14,7 @@ use tetray_mesh::cells::{
 
 use super::read::{common_global_ids, piece_error, read_arrays, read_points, section};
 use super::tree::{find, VtuDoc, XmlPiece};
-use crate::vtk::image_grid::ImageGeometry;
+use crate::vtk::ImageGeometry;
 use crate::vtk::VtkError;
 
 /// The raw grid of a StructuredGrid, RectilinearGrid or ImageData document.

@@ -10,6 +10,7 @@ use flate2::Compression;
 
 use super::data::ZLIB;
 use super::stream::{write_vtu_streamed, VtuIndex, VtuStreamOptions};
+use super::tree::escape;
 use crate::vtk::VtuEncoding;
 use tetray_mesh::TetMesh;
 
@@ -316,20 +317,4 @@ impl ArrayWriter {
         }
         Ok(out)
     }
-}
-
-/// Escapes text for an XML attribute value.
-pub(super) fn escape(s: &str) -> String {
-    let mut out = String::with_capacity(s.len());
-    for c in s.chars() {
-        match c {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '>' => out.push_str("&gt;"),
-            '"' => out.push_str("&quot;"),
-            '\'' => out.push_str("&apos;"),
-            _ => out.push(c),
-        }
-    }
-    out
 }
