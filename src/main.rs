@@ -11,6 +11,7 @@ use std::process::ExitCode;
 use clap::Parser;
 
 fn main() -> ExitCode {
+    quiet_device_select();
     let args = match cli::Cli::try_parse() {
         Ok(args) => args,
         // --help and --version.
@@ -34,5 +35,19 @@ fn main() -> ExitCode {
             );
             ExitCode::FAILURE
         }
+    }
+}
+
+/// Turns off Mesa's Vulkan device-selection layer where it could only
+/// print errors (no Wayland display; see
+/// `tetray_gpu::device_select_would_be_noisy`): its switch is an
+/// environment variable the Vulkan loader reads, so it is set here, first
+/// thing, while this is the process's only thread.
+#[allow(unsafe_code)]
+fn quiet_device_select() {
+    if tetray_gpu::device_select_would_be_noisy() {
+        // SAFETY: no other thread exists yet (nothing has run but this
+        // function), so nothing can read the environment while it changes.
+        unsafe { std::env::set_var("NODEVICE_SELECT", "1") };
     }
 }

@@ -7,10 +7,21 @@ use std::path::{Path, PathBuf};
 use serde_json::Value;
 
 mod support;
-use support::run as run_in;
 
 fn data_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("data/plot3d")
+}
+
+/// Runs tetray with `args` in `dir`, the PLOT3D datasets named by
+/// TETRAY_DATA_DIR (a scratch folder has no data/plot3d, and the test's
+/// executable may be built outside the checkout).
+fn run_in(dir: &Path, args: &[&str]) -> std::process::Output {
+    std::process::Command::new(support::BIN)
+        .args(args)
+        .current_dir(dir)
+        .env("TETRAY_DATA_DIR", data_dir())
+        .output()
+        .expect("run tetray")
 }
 
 /// A fresh folder under the target directory for one test.
@@ -103,8 +114,8 @@ fn generate_solid_then_info() {
 fn generate_plot3d_then_info() {
     let dir = scratch("plot3d");
     // Below the dataset's own size: factors 1, the grid written back. No
-    // --data-dir, run from a scratch folder: the dataset is found in the
-    // repository the binary was built from.
+    // --data-dir, run from a scratch folder: the dataset is found through
+    // TETRAY_DATA_DIR (`json` sets it to the repository's data/plot3d).
     let summary = json(
         &dir,
         &[

@@ -72,9 +72,8 @@ pub struct Plot3dArgs {
     /// Solution file of --grid.
     #[arg(long, value_name = "FILE", requires = "grid")]
     pub q: Option<PathBuf>,
-    /// Folder of the datasets. Default: $TETRAY_DATA_DIR, else the
-    /// repository's data/plot3d (found from the source tree tetray was
-    /// built from).
+    /// Folder of the datasets. Default: $TETRAY_DATA_DIR, else
+    /// data/plot3d in the current directory or above the executable.
     #[arg(long, value_name = "DIR")]
     pub data_dir: Option<PathBuf>,
     /// Tetrahedra wanted (at least): 1M, 10M, 40M or a whole number (k, M,

@@ -65,8 +65,8 @@ pub struct StudyArgs {
     #[arg(long, value_name = "N", default_value_t = 600)]
     pub pixels: u32,
     /// speed: folder of the PLOT3D datasets (bluntfin, post, comb).
-    /// Default: $TETRAY_DATA_DIR, else the repository's data/plot3d (found
-    /// from the source tree tetray was built from).
+    /// Default: $TETRAY_DATA_DIR, else data/plot3d in the current
+    /// directory or above the executable.
     #[arg(long, value_name = "DIR")]
     pub data: Option<PathBuf>,
     /// speed: the dissertation's size (800x800, 8-frame orbits, meshes

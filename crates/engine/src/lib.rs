@@ -38,7 +38,7 @@ pub use options::{
     bvh_preset_for, CameraOptions, FrameOptions, IntegratorChoice, Log, RendererChoice,
     Representation, TfSource, WalkOptions,
 };
-pub use prepare::prepare;
+pub use prepare::{prepare, EMBEDDED_VIEW};
 pub use renderer::{Engine, GpuEngine, ProjectEngine};
 pub use segment::{segment, SegmentOptions};
 pub use setup::{prepare_mesh, prepare_part, Extent, Setup, Volume};

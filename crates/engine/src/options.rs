@@ -111,17 +111,21 @@ impl CameraOptions {
     /// when any of position, focal point, view-up, azimuth or elevation is
     /// given, or the parallel scale; else [`DEFAULT_VIEW`].
     pub fn rotation(&self) -> (f32, f32) {
-        let given = self.camera_position.is_some()
-            || self.focal_point.is_some()
-            || self.view_up.is_some()
-            || self.parallel_scale.is_some()
-            || self.azimuth.is_some()
-            || self.elevation.is_some();
-        if given {
+        if self.is_given() {
             (self.azimuth.unwrap_or(0.0), self.elevation.unwrap_or(0.0))
         } else {
             DEFAULT_VIEW
         }
+    }
+
+    /// Whether any camera value is given (the view angle aside).
+    pub fn is_given(&self) -> bool {
+        self.camera_position.is_some()
+            || self.focal_point.is_some()
+            || self.view_up.is_some()
+            || self.parallel_scale.is_some()
+            || self.azimuth.is_some()
+            || self.elevation.is_some()
     }
 }
 

@@ -1,6 +1,8 @@
 //! Renders the Blunt Fin (or another mesh) on the GPU, the CPU and the
 //! kernel's CPU twin, compares them and prints the kernel's mesh traffic
-//! counted by the twin. Usage: gpu_frame [size] [method] [mesh field]
+//! counted by the twin; writes the GPU and CPU images as gpu.png and
+//! cpu.png in the current folder. Usage: gpu_frame [size] [method] [mesh
+//! field]
 use std::path::Path;
 
 use tetray_boundary_bvh::BuildPreset;
@@ -111,8 +113,8 @@ fn main() -> anyhow::Result<()> {
     compare("twin vs cpu", &twin, &cpu.image);
     frame
         .image
-        .write_png(Path::new("/tmp/gpu.png"), glam::Vec3::ZERO)?;
+        .write_png(Path::new("gpu.png"), glam::Vec3::ZERO)?;
     cpu.image
-        .write_png(Path::new("/tmp/cpu.png"), glam::Vec3::ZERO)?;
+        .write_png(Path::new("cpu.png"), glam::Vec3::ZERO)?;
     Ok(())
 }

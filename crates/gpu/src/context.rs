@@ -4,8 +4,9 @@
 
 use crate::GpuError;
 
-/// Turns off Mesa's Vulkan device-selection layer when it could only fail
-/// noisily.
+/// Whether Mesa's Vulkan device-selection layer could only fail noisily
+/// here, so that a binary should turn it off (`NODEVICE_SELECT=1`) before
+/// any thread starts.
 ///
 /// `VK_LAYER_MESA_device_select` (an implicit layer installed with Mesa's
 /// Vulkan drivers, lavapipe included) orders the physical devices by the
@@ -14,17 +15,18 @@ use crate::GpuError;
 /// `vkEnumeratePhysicalDevices`, and libwayland prints `error:
 /// XDG_RUNTIME_DIR is invalid or not set in the environment.` on stderr
 /// (once per enumeration, twice per adapter probe) when there is no runtime
-/// directory, i.e. no Wayland session to ask. The layer's own switch,
-/// `NODEVICE_SELECT=1` (read by the Vulkan loader when the instance is
-/// created), skips it. The order it would give matters little here: wgpu
-/// ranks adapters by type and `WGPU_POWER_PREF` itself. Left alone when
-/// the user chose (`NODEVICE_SELECT`, `MESA_VK_DEVICE_SELECT`,
-/// `DRI_PRIME`) or when a Wayland connection could succeed. Call it before
-/// creating a wgpu instance elsewhere (the viewer's eframe device).
-pub fn quiet_device_select() {
+/// directory, i.e. no Wayland display to ask. The layer's own switch,
+/// `NODEVICE_SELECT=1`, is read by the Vulkan loader from the environment
+/// when an instance is created; the order the layer would give matters
+/// little here, as wgpu ranks adapters by type and `WGPU_POWER_PREF`
+/// itself. False when the user chose (`NODEVICE_SELECT`,
+/// `MESA_VK_DEVICE_SELECT`, `DRI_PRIME`) or when a Wayland connection could
+/// succeed. This library never writes the environment: other threads (and
+/// the Vulkan loader's C code) may be reading it.
+pub fn device_select_would_be_noisy() -> bool {
     let set = |name: &str| std::env::var_os(name).is_some_and(|v| !v.is_empty());
     if set("NODEVICE_SELECT") || set("MESA_VK_DEVICE_SELECT") || set("DRI_PRIME") {
-        return;
+        return false;
     }
     // libwayland's own test: XDG_RUNTIME_DIR must name a directory, unless
     // WAYLAND_DISPLAY is an absolute socket path.
@@ -32,12 +34,7 @@ pub fn quiet_device_select() {
         std::env::var_os("XDG_RUNTIME_DIR").is_some_and(|dir| std::path::Path::new(&dir).is_dir());
     let absolute_socket =
         std::env::var_os("WAYLAND_DISPLAY").is_some_and(|d| std::path::Path::new(&d).is_absolute());
-    if runtime_dir_ok || absolute_socket {
-        return;
-    }
-    // Set before any Vulkan call of this process; no thread of ours reads
-    // the environment concurrently (the loader reads it in this thread).
-    std::env::set_var("NODEVICE_SELECT", "1");
+    !(runtime_dir_ok || absolute_socket)
 }
 
 /// A device ready for the ray caster.
@@ -57,7 +54,6 @@ impl GpuContext {
     }
 
     async fn new_async() -> Result<GpuContext, GpuError> {
-        quiet_device_select();
         let mut descriptor = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
         if std::env::var_os("WGPU_BACKEND").is_none() {
             // Compute needs no window system: skip the GL probe (and its

@@ -26,7 +26,7 @@ mod target;
 pub mod twin;
 mod upload;
 
-pub use context::{quiet_device_select, GpuContext};
+pub use context::{device_select_would_be_noisy, GpuContext};
 pub use error::GpuError;
 pub use layout::SceneLayout;
 pub use render::{

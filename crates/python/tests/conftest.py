@@ -27,7 +27,7 @@ def _tetray_bin() -> pathlib.Path:
     return path
 
 
-@pytest.fixture(scope="session")
+@pytest.fixture(scope="module")
 def tetray_bin() -> pathlib.Path:
     return _tetray_bin()
 

@@ -28,11 +28,11 @@ use tetray_integrate::{PreintegrationTable, SegmentLight, TfKnots};
 /// How slabs are classified.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Classification {
-    /// Full pre-integration over `(s_front, s_back)` (the seed's method).
+    /// Full pre-integration over `(s_front, s_back)` (Schulze et al.'s method).
     #[default]
     PreIntegrated,
     /// The front sample, classified, constant over the slab (standard
-    /// shear-warp; the seed's baseline).
+    /// shear-warp; Schulze et al.'s baseline).
     PostClassified,
 }
 
@@ -45,7 +45,7 @@ impl Classification {
     }
 
     /// The classification an integration method asks of shear-warp: the
-    /// Riemann sum post-classifies (the seed's baseline: the front sample
+    /// Riemann sum post-classifies (Schulze et al.'s baseline: the front sample
     /// constant over each slab); every other method pre-integrates with the
     /// full table.
     pub fn for_method(method: tetray_integrate::Method) -> Classification {

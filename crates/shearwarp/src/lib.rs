@@ -11,7 +11,7 @@
 //!   with the front slice (sheared slices; for perspective, also scaled),
 //!   then warps that image to the final one bilinearly. Slabs are
 //!   classified with the full pre-integration table of `tetray-integrate`
-//!   plus the seed's opacity and colour correction, or post-classified (the
+//!   plus Schulze et al.'s opacity and colour correction, or post-classified (the
 //!   baseline); see [`classify`]. Empty cells are run-length encoded per
 //!   scanline and skipped; opaque pixels are skipped by links and stop
 //!   their ray early; scanlines are composited in parallel (rayon).

@@ -30,7 +30,7 @@ fn smooth_tf() -> TransferFunction {
     ])
 }
 
-/// A transfer function with many narrow opacity peaks (the seed's case
+/// A transfer function with many narrow opacity peaks (Schulze et al.'s case
 /// where post-classification needs far more samples than the data).
 fn high_frequency_tf() -> TransferFunction {
     let mut points = vec![(-0.2, [0.0; 3], 0.0)];
@@ -101,7 +101,7 @@ fn agrees_with_the_exact_tetrahedral_ray_caster() {
     }
 }
 
-/// The seed's claim: on a high-frequency transfer function,
+/// Schulze et al.'s claim: on a high-frequency transfer function,
 /// pre-integration at the data's sampling rate is far closer to the
 /// exact integral than post-classification. Measured on full pixels:
 /// pre-integrated mean error 1.5e-2, post-classified 4.9e-2; required:

@@ -5,7 +5,6 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use anyhow::Context;
-use egui::{PointerButton, Rect, Sense};
 use glam::Vec3;
 use tetray_core::Camera;
 use tetray_engine::{Log, Setup};
@@ -13,7 +12,6 @@ use tetray_integrate::{Method, TransferFunction};
 use tetray_scene::Scene;
 use tetray_shearwarp::ShearWarp;
 
-use crate::camera_ui;
 use crate::cpu::{CpuJob, CpuWork, CpuWorker};
 use crate::engine::{FrameKey, GpuRenderer, Look, Phase, Progressive};
 use crate::methods::{RendererChoice, Settings, ViewIntegrator};

@@ -36,8 +36,6 @@ pub const WINDOW_SIZE: [f32; 2] = [1280.0, 800.0];
 /// picks it, asked for its own limits and the renderers' optional features
 /// ([`tetray_gpu::GpuContext::device_request`]).
 pub fn wgpu_setup() -> egui_wgpu::WgpuSetup {
-    // No Wayland session: no device-select layer printing about it.
-    tetray_gpu::quiet_device_select();
     let mut setup = egui_wgpu::WgpuSetupCreateNew::without_display_handle();
     if std::env::var_os("WGPU_BACKEND").is_none() {
         // The ray caster is compute: Vulkan / Metal / DX12 only.

@@ -14,7 +14,7 @@ use egui_kittest::kittest::Queryable;
 use egui_kittest::SnapshotOptions;
 use glam::Vec3;
 use support::{difference, displayed, gpu_or_skip, harness, options, run_until_idle};
-use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunction};
+use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator};
 use tetray_raycast::{render_scalar, RenderOptions};
 
 /// The display at startup: compared with the stored snapshot, and with the
@@ -54,7 +54,9 @@ fn starts_on_the_default_dataset_and_matches_the_snapshot() {
     let setup = support::blunt_fin();
     let scene = setup.scene().expect("scene");
     let (lo, hi) = tetray_mesh::value_range(&scene.scalar);
-    let tf = TransferFunction::default_for_range(lo, hi);
+    // The viewer starts on the setup's transfer function (for the embedded
+    // Blunt Fin, its density preset).
+    let tf = setup.tf.clone();
     let integrator = ScalarIntegrator::new(
         Method::Ppi,
         &tf,

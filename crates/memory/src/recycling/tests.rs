@@ -139,6 +139,61 @@ fn realloc_keeps_the_contents_across_every_size_class() {
 }
 
 #[test]
+fn realloc_copies_between_the_systems_blocks_and_mapped_ones() {
+    let a = Recycling::new();
+    // SAFETY: as above; each realloc's result replaces the old pointer.
+    unsafe {
+        // Small (System's) to large (mapped here): a copy.
+        let mut size = 1000;
+        let mut p = a.alloc(layout(size));
+        fill(p, size, 21);
+        for next in [LARGE + 7, 5000, LARGE - 1, 2 * LARGE] {
+            p = a.realloc(p, layout(size), next);
+            assert!(!p.is_null());
+            assert!(holds(p, size.min(next), 21), "{size} -> {next}");
+            size = next;
+            fill(p, size, 21);
+        }
+        // Large back to small frees the mapped block into the cache.
+        p = a.realloc(p, layout(size), 64);
+        assert!(holds(p, 64, 21));
+        assert!(a.kept_bytes() >= page_round(2 * LARGE));
+        a.dealloc(p, layout(64));
+    }
+    a.release();
+}
+
+#[test]
+fn a_block_assembled_from_several_mappings_reallocates() {
+    let a = Recycling::new();
+    let parts = [9 * MIB, 7 * MIB, 5 * MIB];
+    let size = 21 * MIB;
+    for next in [40 * MIB + 3, 12 * MIB, 30 * MIB, 100] {
+        a.release();
+        // SAFETY: as above; `p` is replaced by realloc's result.
+        unsafe {
+            // Three kept blocks moved into one fresh mapping: a block the
+            // kernel may hold as several mappings, which mremap refuses to
+            // resize (realloc then copies).
+            let blocks: Vec<*mut u8> = parts.iter().map(|&s| a.alloc(layout(s))).collect();
+            for (&p, &s) in blocks.iter().zip(&parts) {
+                a.dealloc(p, layout(s));
+            }
+            let p = a.alloc(layout(size));
+            assert_eq!(a.kept_bytes(), 0, "every kept page moved into the block");
+            fill(p, size, 33);
+            let q = a.realloc(p, layout(size), next);
+            assert!(!q.is_null());
+            assert!(holds(q, size.min(next), 33), "{size} -> {next}");
+            fill(q, next, 34);
+            assert!(holds(q, next, 34));
+            a.dealloc(q, layout(next));
+        }
+    }
+    a.release();
+}
+
+#[test]
 fn at_most_slots_blocks_are_kept_and_the_smallest_go_first() {
     let a = Recycling::new();
     let sizes: Vec<usize> = (0..SLOTS + 2).map(|i| (17 + i) * MIB).collect();

@@ -13,10 +13,10 @@ use super::cell_table::CellTable;
 use super::cell_types::{classify, type_name, CellKind};
 use super::grid::{CellArray, CellGrid};
 use super::poly_grid::{checked_faces, separate_inline_faces};
-use super::polyhedron::{prism_faces, split_polyhedron, PolyhedronFaces};
+use super::polyhedron::{prism_faces, split_polyhedron};
 use super::split::{hexahedron_cones, split_cell};
 use super::split_quadratic::{subdivide, Subdivision};
-use super::{CellCounts, CellError, PieceCounts, ReadOptions, SubdividedCells, VtkRead};
+use super::{CellCounts, CellError, ReadOptions, SubdividedCells, VtkRead};
 use crate::{first_index, first_position, ScalarField, TetMesh};
 
 /// Checks what the reader can see, splits the cells and builds the mesh.

@@ -30,7 +30,6 @@ pub fn blunt_fin() -> Setup {
 /// test says so loudly and returns, unless `TETRAY_REQUIRE_GPU=1` (CI),
 /// where that is a failure.
 pub fn gpu_or_skip() -> bool {
-    tetray_gpu::quiet_device_select();
     let mut descriptor = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
     if std::env::var_os("WGPU_BACKEND").is_none() {
         descriptor.backends = wgpu::Backends::PRIMARY;
