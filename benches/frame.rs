@@ -5,10 +5,10 @@
 
 use std::time::Duration;
 
-use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use tetray_gpu::{GpuContext, GpuIntegrator, GpuRaycaster, GpuRenderOptions, GpuScene};
 use tetray_integrate::Method;
-use tetray_raycast::{render_scalar, RenderOptions};
+use tetray_raycast::{RenderOptions, render_scalar};
 
 mod support;
 

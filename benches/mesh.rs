@@ -5,12 +5,12 @@
 use std::hint::black_box;
 use std::time::Duration;
 
-use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use glam::Vec3;
 use tetray_boundary_bvh::{BoundaryBvh, BuildPreset};
 use tetray_core::watertight::RayFrame;
-use tetray_mesh::synthetic::{box_grid, CellSplit};
 use tetray_mesh::Topology;
+use tetray_mesh::synthetic::{CellSplit, box_grid};
 use tetray_scene::{CellOrder, Scene};
 
 mod support;

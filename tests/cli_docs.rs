@@ -53,12 +53,11 @@ fn page() -> String {
             format!("tetray {}", command.join(" "))
         };
         page.push_str(&format!("\n## `{title}`\n\n```text\n{}```\n", text));
-        let mut position = 0;
-        for sub in subcommands(&text) {
+        // Depth first: a command's subcommands come right after it.
+        for (position, sub) in subcommands(&text).into_iter().enumerate() {
             let mut child = command.clone();
             child.push(sub);
             queue.insert(position, child);
-            position += 1;
         }
     }
     page

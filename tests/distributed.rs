@@ -19,9 +19,9 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use glam::Vec3;
-use support::{run, scratch, text, BIN};
-use tetray_mesh::synthetic::{box_grid, hollow_box, CellSplit};
+use support::{BIN, run, scratch, text};
 use tetray_mesh::TetMesh;
+use tetray_mesh::synthetic::{CellSplit, box_grid, hollow_box};
 
 /// The bound on the difference per pixel channel.
 const TOLERANCE: f32 = 1e-5;

@@ -565,11 +565,15 @@ mod tests {
         assert!(parse_early_termination("1.5").is_err());
         assert_eq!(parse_method("PPI"), Ok(Method::Ppi));
         assert_eq!(parse_sort("MPVO"), Ok(SortKind::Mpvo));
-        assert!(parse_sort("bsp")
-            .unwrap_err()
-            .contains("centroid, mpvo, mpvonc"));
-        assert!(parse_method("simpson")
-            .unwrap_err()
-            .contains("expected one of"));
+        assert!(
+            parse_sort("bsp")
+                .unwrap_err()
+                .contains("centroid, mpvo, mpvonc")
+        );
+        assert!(
+            parse_method("simpson")
+                .unwrap_err()
+                .contains("expected one of")
+        );
     }
 }

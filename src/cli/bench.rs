@@ -1,6 +1,6 @@
 //! `tetray bench`: frame times over an orbit of the camera, as JSON.
 
-use super::args::{parse_finite, parse_size, CameraArgs, IntegratorArgs, MeshArgs, WalkArgs};
+use super::args::{CameraArgs, IntegratorArgs, MeshArgs, WalkArgs, parse_finite, parse_size};
 use super::{render, scene};
 use clap::Args;
 use serde::Serialize;

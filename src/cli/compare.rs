@@ -11,8 +11,8 @@ use tetray_boundary_bvh::BuildPreset;
 use tetray_project::SortKind;
 
 use super::args::{
-    parse_bvh_preset, parse_rgb, parse_size, CameraArgs, IntegratorArgs, MeshArgs, RendererArg,
-    WalkArgs,
+    CameraArgs, IntegratorArgs, MeshArgs, RendererArg, WalkArgs, parse_bvh_preset, parse_rgb,
+    parse_size,
 };
 use super::scene;
 

@@ -13,13 +13,12 @@
 
 use std::time::Instant;
 
-use anyhow::{bail, Context};
-use clap::Args;
+use anyhow::{Context, bail};
 use serde::Serialize;
 use tetray_core::{Camera, Image};
 use tetray_distributed::mpi::topology::SimpleCommunicator;
 use tetray_distributed::mpi::traits::*;
-use tetray_distributed::{prepare_part, render_setup, DistributedFrame, FrameReport, Part};
+use tetray_distributed::{DistributedFrame, FrameReport, Part, prepare_part, render_setup};
 use tetray_raycast::RenderOptions;
 
 use super::args::{CameraArgs, IntegratorArgs, MeshArgs, RendererArg, WalkArgs};

@@ -7,11 +7,11 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use anyhow::{bail, Context};
+use anyhow::{Context, bail};
 use clap::{Args, Subcommand, ValueEnum};
 use serde::Serialize;
 use tetray_io::generate::pieces::write_pvtu;
-use tetray_io::generate::solid::{TorusShell, FIELDS};
+use tetray_io::generate::solid::{FIELDS, TorusShell};
 use tetray_io::generate::{Refinement, RefinementPlan};
 use tetray_io::plot3d::{plot3d_split_counts, read_plot3d_grid_files};
 use tetray_io::plot3d_q_sibling;
@@ -174,13 +174,13 @@ fn plot3d(args: &Plot3dArgs) -> anyhow::Result<()> {
     };
     let (out_xyz, out_q) = (file_name(&xyz)?, q.as_deref().map(file_name).transpose()?);
     for (input, output) in [(Some(&xyz), Some(&out_xyz)), (q.as_ref(), out_q.as_ref())] {
-        if let (Some(input), Some(output)) = (input, output) {
-            if same_file(input, output) {
-                bail!(
-                    "{}: the output would overwrite the input; choose another -o folder",
-                    output.display()
-                );
-            }
+        if let (Some(input), Some(output)) = (input, output)
+            && same_file(input, output)
+        {
+            bail!(
+                "{}: the output would overwrite the input; choose another -o folder",
+                output.display()
+            );
         }
     }
     let source = read_plot3d_grid_files(&xyz, q.as_deref())?;

@@ -69,11 +69,11 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
     #[cfg(feature = "mpi")]
     match &cli.command {
         Some(Command::Render(args)) if args.distributed.wanted() => {
-            return distributed::render(args)
+            return distributed::render(args);
         }
         Some(Command::Bench(args)) if args.distributed.wanted() => return distributed::bench(args),
         Some(Command::Compare(args)) if args.distributed.wanted() => {
-            return distributed::compare(args)
+            return distributed::compare(args);
         }
         _ => {}
     }

@@ -3,7 +3,7 @@
 
 use clap::Args;
 use serde::Serialize;
-use tetray_integrate::{psi, PsiTable};
+use tetray_integrate::{PsiTable, psi};
 
 use super::args::parse_unit_interval;
 

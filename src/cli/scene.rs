@@ -6,7 +6,7 @@
 
 use anyhow::Context;
 
-pub use tetray_engine::{plural, MeshInput, Setup};
+pub use tetray_engine::{MeshInput, Setup, plural};
 
 use super::args::{CameraArgs, IntegratorArgs, MeshArgs, WalkArgs};
 

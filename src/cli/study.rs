@@ -4,7 +4,7 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use anyhow::{bail, Context};
+use anyhow::{Context, bail};
 use clap::{Args, ValueEnum};
 use tetray_integrate::Method;
 use tetray_study::accuracy::{self, AccuracyOptions};
@@ -272,7 +272,13 @@ fn run_one(
             for r in &s.table {
                 println!(
                     "  {:<18} {} {:<16} {:>9.2} ms  {:>8.3} frames/s  {:>10.0} tets/s  {:>12.0} segments/s",
-                    r.mesh, r.renderer, r.method, r.ms_per_frame, r.fps, r.tets_per_s, r.segments_per_s
+                    r.mesh,
+                    r.renderer,
+                    r.method,
+                    r.ms_per_frame,
+                    r.fps,
+                    r.tets_per_s,
+                    r.segments_per_s
                 );
             }
             for note in &s.notes {

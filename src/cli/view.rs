@@ -6,7 +6,7 @@ use std::time::Duration;
 use clap::Args;
 use tetray_viewer::ViewerOptions;
 
-use super::args::{parse_positive, IntegratorArgs, MeshArgs};
+use super::args::{IntegratorArgs, MeshArgs, parse_positive};
 use super::scene::{prepare_with, read_tf};
 
 /// `tetray view`.

@@ -2,8 +2,8 @@
 
 use tetray_mesh::{TetMesh, Topology};
 
-use crate::{is_better, query_is_valid, EntryHit};
-use tetray_core::watertight::{cross_triangle, RayFrame};
+use crate::{EntryHit, is_better, query_is_valid};
+use tetray_core::watertight::{RayFrame, cross_triangle};
 
 /// Same contract as [`crate::BoundaryBvh::first_entry`], by testing every
 /// boundary face. Faces naming a point the mesh does not have are ignored

@@ -3,8 +3,8 @@
 use std::time::Duration;
 
 use glam::{Vec3, Vec3A};
-use obvhs::bvh2::builder::build_bvh2_from_tris;
 use obvhs::bvh2::Bvh2;
+use obvhs::bvh2::builder::build_bvh2_from_tris;
 use obvhs::triangle::Triangle;
 use tetray_mesh::{TetMesh, Topology};
 

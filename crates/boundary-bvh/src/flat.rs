@@ -14,8 +14,8 @@ use glam::Vec3;
 
 use crate::build::BoundaryBvh;
 use crate::slab::RaySlab;
-use crate::{is_better, query_is_valid, BvhError, EntryHit};
-use tetray_core::watertight::{cross_triangle, RayFrame};
+use crate::{BvhError, EntryHit, is_better, query_is_valid};
+use tetray_core::watertight::{RayFrame, cross_triangle};
 
 /// Traversal stack entries of the GPU kernel. The stack never holds more
 /// than the tree depth (one pending far child per inner node on the current

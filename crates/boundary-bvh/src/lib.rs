@@ -22,7 +22,7 @@ mod traverse;
 
 pub use brute::brute_force_first_entry;
 pub use build::{BoundaryBvh, BvhStats};
-pub use flat::{FlatBvh, FlatNode, FlatPrim, FLAT_STACK_SIZE};
+pub use flat::{FLAT_STACK_SIZE, FlatBvh, FlatNode, FlatPrim};
 pub use preset::BuildPreset;
 
 /// The boundary face a ray enters the mesh through.

@@ -99,11 +99,7 @@ impl RaySlab {
         let hi = t0.max(t1).min_element();
         let near = if lo > t_lo { lo } else { t_lo };
         let far = if hi < t_hi { hi } else { t_hi };
-        if near <= far {
-            Some(near)
-        } else {
-            None
-        }
+        if near <= far { Some(near) } else { None }
     }
 
     /// The distance at which the ray enters the padded box `[min, max]`, if
@@ -132,11 +128,7 @@ impl RaySlab {
                 far = if hi < far { hi } else { far };
             }
         }
-        if near <= far {
-            Some(near)
-        } else {
-            None
-        }
+        if near <= far { Some(near) } else { None }
     }
 }
 

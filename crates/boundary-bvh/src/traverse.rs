@@ -4,8 +4,8 @@ use glam::Vec3;
 
 use crate::build::BoundaryBvh;
 use crate::slab::RaySlab;
-use crate::{is_better, query_is_valid, EntryHit};
-use tetray_core::watertight::{entry_distance, RayFrame};
+use crate::{EntryHit, is_better, query_is_valid};
+use tetray_core::watertight::{RayFrame, entry_distance};
 
 /// Inline stack capacity. Traversal descends into the nearer child and
 /// pushes the farther one, so at most one entry per inner node of the current

@@ -6,8 +6,8 @@ mod support;
 
 use glam::Vec3;
 use support::rays::random_dir;
-use support::{topology, Rng};
-use tetray_boundary_bvh::{brute_force_first_entry, BoundaryBvh, BuildPreset, FLAT_STACK_SIZE};
+use support::{Rng, topology};
+use tetray_boundary_bvh::{BoundaryBvh, BuildPreset, FLAT_STACK_SIZE, brute_force_first_entry};
 use tetray_core::watertight::RayFrame;
 use tetray_mesh::TetMesh;
 

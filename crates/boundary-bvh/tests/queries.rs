@@ -5,11 +5,11 @@
 mod support;
 
 use glam::Vec3;
-use support::meshes::{cases, Case};
-use support::rays::{grid_queries, random_queries, Query};
-use support::{next_exit, topology, Rng};
+use support::meshes::{Case, cases};
+use support::rays::{Query, grid_queries, random_queries};
+use support::{Rng, next_exit, topology};
 use tetray_boundary_bvh::{
-    brute_force_first_entry, BoundaryBvh, BuildPreset, BvhError, EntryHit, FlatBvh,
+    BoundaryBvh, BuildPreset, BvhError, EntryHit, FlatBvh, brute_force_first_entry,
 };
 use tetray_core::watertight::RayFrame;
 use tetray_mesh::{TetMesh, Topology};

@@ -7,7 +7,7 @@ mod support;
 use glam::{DVec2, Vec3};
 use support::meshes::cases;
 use support::rays::{grid_queries, random_queries};
-use support::{line_crossings, topology, Rng};
+use support::{Rng, line_crossings, topology};
 use tetray_core::watertight::{Projector, RayFrame};
 use tetray_mesh::{TetMesh, Topology};
 

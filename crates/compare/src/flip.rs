@@ -21,8 +21,8 @@ use rayon::prelude::*;
 
 use tetray_core::Image;
 
-use crate::metrics::same_size;
 use crate::CompareError;
+use crate::metrics::same_size;
 
 /// FLIP's default viewing: a 0.7 m wide 4K display seen from 0.7 m.
 pub const PIXELS_PER_DEGREE: f32 = 67.0;

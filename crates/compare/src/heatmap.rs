@@ -4,7 +4,7 @@
 
 use image::{Rgb, RgbImage};
 
-use crate::font::{draw_text, text_width, LINE};
+use crate::font::{LINE, draw_text, text_width};
 
 const STOPS: [[f32; 3]; 6] = [
     [0.0, 0.0, 0.015],

@@ -15,9 +15,9 @@ pub mod sheet;
 
 use std::path::PathBuf;
 
-pub use metrics::{abs_error, ErrorStats, ONE_LEVEL};
-pub use report::{compare, Method, Report, Row, Speed};
-pub use run::{parse_spec, run, RunOptions, Spec};
+pub use metrics::{ErrorStats, ONE_LEVEL, abs_error};
+pub use report::{Method, Report, Row, Speed, compare};
+pub use run::{RunOptions, Spec, parse_spec, run};
 
 /// What can go wrong comparing images or writing the results.
 #[derive(Debug, thiserror::Error)]
@@ -45,12 +45,19 @@ pub enum CompareError {
     Raster(#[from] tetray_core::ImageError),
     #[error("serializing the table: {0}")]
     Json(#[from] serde_json::Error),
+    /// Boxed: the engine's error is large, and this one travels often.
     #[error(transparent)]
-    Engine(#[from] tetray_engine::EngineError),
+    Engine(Box<tetray_engine::EngineError>),
     #[error("{label}: rendering")]
     Render {
         label: String,
         #[source]
-        source: tetray_engine::EngineError,
+        source: Box<tetray_engine::EngineError>,
     },
+}
+
+impl From<tetray_engine::EngineError> for CompareError {
+    fn from(e: tetray_engine::EngineError) -> Self {
+        CompareError::Engine(Box::new(e))
+    }
 }

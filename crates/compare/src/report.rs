@@ -8,11 +8,11 @@ use glam::Vec3;
 use serde::Serialize;
 use tetray_core::Image;
 
-use crate::flip::{flip, PIXELS_PER_DEGREE};
-use crate::heatmap::{colour_bar, heat_map};
-use crate::metrics::{abs_error, ErrorStats, ONE_LEVEL};
-use crate::sheet::{sheet, SheetRow};
 use crate::CompareError;
+use crate::flip::{PIXELS_PER_DEGREE, flip};
+use crate::heatmap::{colour_bar, heat_map};
+use crate::metrics::{ErrorStats, ONE_LEVEL, abs_error};
+use crate::sheet::{SheetRow, sheet};
 
 /// How fast a method made its image.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]

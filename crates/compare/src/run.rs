@@ -3,12 +3,12 @@
 //! the same way ([`tetray_engine::measure`]) and measured against the exact
 //! f64 CPU reference.
 
-use tetray_engine::{measure, Engine, RendererChoice, Setup, Timing, WalkOptions};
+use tetray_engine::{Engine, RendererChoice, Setup, Timing, WalkOptions, measure};
 use tetray_integrate::Method as Integrator;
 use tetray_project::SortKind;
 
-use crate::report::{compare, Method, Report, Speed};
 use crate::CompareError;
+use crate::report::{Method, Report, Speed, compare};
 
 /// One combination: a renderer, an integrator (`None`: the setup's) and,
 /// for the projection, a visibility sort.
@@ -28,7 +28,7 @@ pub fn parse_spec(text: &str) -> Result<Spec, String> {
         _ => {
             return Err(format!(
                 "{text:?}: the renderer must be cpu, gpu, project or shear-warp"
-            ))
+            ));
         }
     };
     let mut spec = Spec {
@@ -133,7 +133,7 @@ fn render(
         measure(&engine, setup, &setup.camera, walk, options.size, timing).map_err(|e| {
             CompareError::Render {
                 label: label.clone(),
-                source: e,
+                source: Box::new(e),
             }
         })?;
     let seconds = measured.median_seconds();

@@ -4,7 +4,7 @@
 
 use image::{Rgb, RgbImage};
 
-use crate::font::{draw_text, text_width, LINE};
+use crate::font::{LINE, draw_text, text_width};
 
 const GAP: u32 = 8;
 const WHITE: Rgb<u8> = Rgb([255, 255, 255]);

@@ -169,10 +169,10 @@ impl Camera {
         if !(self.view_angle > 0.0 && self.view_angle < 180.0) {
             return Err(CameraError::BadViewAngle(self.view_angle));
         }
-        if let Some(s) = self.parallel_scale {
-            if !(s.is_finite() && s > 0.0) {
-                return Err(CameraError::BadParallelScale(s));
-            }
+        if let Some(s) = self.parallel_scale
+            && !(s.is_finite() && s > 0.0)
+        {
+            return Err(CameraError::BadParallelScale(s));
         }
         let direction =
             (self.focal_point.as_dvec3() - self.position.as_dvec3()).normalize_or_zero();

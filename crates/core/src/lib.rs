@@ -17,7 +17,7 @@ pub mod image;
 pub mod method;
 pub mod watertight;
 
-pub use camera::{relative_to_origin, Camera, CameraError, PixelRays, ViewBasis};
+pub use camera::{Camera, CameraError, PixelRays, ViewBasis, relative_to_origin};
 pub use counters::WalkCounters;
-pub use image::{composite_over, Image, ImageError};
+pub use image::{Image, ImageError, composite_over};
 pub use method::{Method, Model, UnknownMethod};

@@ -9,14 +9,14 @@ use tetray_core::{Camera, Image};
 use tetray_engine::Setup;
 use tetray_integrate::ScalarIntegrator;
 use tetray_mesh::TetMesh;
-use tetray_raycast::{render_scalar_fragments, RenderOptions};
+use tetray_raycast::{RenderOptions, render_scalar_fragments};
 use tetray_scene::Scene;
 
+use crate::DistributedError;
 use crate::layout::TileLayout;
 use crate::report::{FrameReport, Row};
 use crate::summary::MeshSummary;
 use crate::transport::{all_agree, broadcast_names, composite, gather_rows, reduce_summary};
-use crate::DistributedError;
 
 /// What every rank agreed on about the whole mesh.
 #[derive(Debug, Clone, PartialEq)]

@@ -8,14 +8,14 @@ use glam::DVec3;
 use mpi::traits::*;
 use tetray_engine::{CameraOptions, Extent, FrameOptions, IntegratorChoice, Log, TfSource};
 use tetray_integrate::{Method, TransferFunction};
-use tetray_mesh::cells::{assemble_at, CellGrid, ReadOptions};
-use tetray_mesh::{centring_origin, finish, prepare, LoadedMesh, MeshRead, ScalarField, TetMesh};
+use tetray_mesh::cells::{CellGrid, ReadOptions, assemble_at};
+use tetray_mesh::{LoadedMesh, MeshRead, ScalarField, TetMesh, centring_origin, finish, prepare};
 use tetray_raycast::RenderOptions;
 
-use crate::frame::{agree, render_setup, DistributedFrame};
+use crate::DistributedError;
+use crate::frame::{DistributedFrame, agree, render_setup};
 use crate::layout::DEFAULT_TILE;
 use crate::transport::reduce_bounds;
-use crate::DistributedError;
 
 /// One rank's part of the mesh: points in the simulation's coordinates
 /// (f64), tetrahedra by point index (any orientation: they are oriented

@@ -77,7 +77,7 @@ impl TileLayout {
     }
 
     /// The tiles `rank` owns: `rank`, `rank + P`, ...
-    fn owned_tiles(&self, rank: usize) -> impl Iterator<Item = usize> {
+    fn owned_tiles(&self, rank: usize) -> impl Iterator<Item = usize> + use<> {
         (rank..self.tiles_x() * self.tiles_y()).step_by(self.ranks)
     }
 

@@ -37,21 +37,21 @@ pub mod part;
 #[cfg(feature = "mpi")]
 pub mod transport;
 
-pub use composite::{assemble, blend, bucket_by_owner, composite_owned, Buckets, OwnedPixels};
-pub use layout::{LayoutError, OwnedSlots, TileLayout, DEFAULT_TILE};
+pub use composite::{Buckets, OwnedPixels, assemble, blend, bucket_by_owner, composite_owned};
+pub use layout::{DEFAULT_TILE, LayoutError, OwnedSlots, TileLayout};
 pub use partition::{pieces_for_rank, spatial_split, subset};
 pub use report::{FrameReport, Row};
 pub use summary::{MeshSummary, Reduce};
 pub use tetray_raycast::Fragment;
 
 #[cfg(feature = "mpi")]
-pub use frame::{agree, render_distributed, render_setup, Agreed, DistributedFrame};
+pub use frame::{Agreed, DistributedFrame, agree, render_distributed, render_setup};
 #[cfg(feature = "mpi")]
-pub use in_situ::{render_in_situ, render_in_situ_cells, InSituView, RankMesh};
+pub use in_situ::{InSituView, RankMesh, render_in_situ, render_in_situ_cells};
 #[cfg(feature = "mpi")]
 pub use mpi;
 #[cfg(feature = "mpi")]
-pub use part::{prepare_part, Part};
+pub use part::{Part, prepare_part};
 
 /// Why a distributed frame could not be made.
 #[derive(Debug, thiserror::Error)]

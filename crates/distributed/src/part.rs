@@ -10,14 +10,14 @@ use std::time::{Duration, Instant};
 
 use glam::DVec3;
 use mpi::traits::*;
-use tetray_engine::{Extent, FrameOptions, Log, Setup, Source, SOLID};
+use tetray_engine::{Extent, FrameOptions, Log, SOLID, Setup, Source};
 use tetray_io::vtk::{parallel_piece_count, read_piece_subset};
-use tetray_mesh::{centring_origin, LoadedMesh, Topology};
+use tetray_mesh::{LoadedMesh, Topology, centring_origin};
 
+use crate::DistributedError;
 use crate::frame::agree;
 use crate::partition::{pieces_for_rank, spatial_split};
 use crate::transport::reduce_bounds;
-use crate::DistributedError;
 
 /// This rank's setup and what making it took.
 pub struct Part {
@@ -84,29 +84,29 @@ fn load_part<C: Communicator>(
     source: Source,
 ) -> Result<(String, Option<LoadedMesh>, usize, DVec3), DistributedError> {
     let (rank, size) = (comm.rank() as usize, comm.size() as usize);
-    if let Source::File { path, options } = &source {
-        if is_parallel(path) {
-            let name = path.display().to_string();
-            if !path.is_file() {
-                return Err(tetray_engine::EngineError::NoSuchFile(name).into());
-            }
-            let pieces = parallel_piece_count(path).map_err(tetray_io::IoError::from)?;
-            let mine = pieces_for_rank(pieces, rank, size);
-            let subset = if mine.is_empty() {
-                None
-            } else {
-                Some(read_piece_subset(path, mine).map_err(tetray_io::IoError::from)?)
-            };
-            let bounds = reduce_bounds(comm, subset.as_ref().and_then(|s| s.bounds()))
-                .ok_or(DistributedError::NoMesh)?;
-            let origin = centring_origin(bounds.0, bounds.1);
-            let loaded = match subset {
-                Some(s) => Some(tetray_io::load_piece_subset(s, origin, options)?),
-                None => None,
-            };
-            let cells = loaded.as_ref().map_or(0, LoadedMesh::input_cells);
-            return Ok((name, loaded, cells, origin));
+    if let Source::File { path, options } = &source
+        && is_parallel(path)
+    {
+        let name = path.display().to_string();
+        if !path.is_file() {
+            return Err(tetray_engine::EngineError::NoSuchFile(name).into());
         }
+        let pieces = parallel_piece_count(path).map_err(tetray_io::IoError::from)?;
+        let mine = pieces_for_rank(pieces, rank, size);
+        let subset = if mine.is_empty() {
+            None
+        } else {
+            Some(read_piece_subset(path, mine).map_err(tetray_io::IoError::from)?)
+        };
+        let bounds = reduce_bounds(comm, subset.as_ref().and_then(|s| s.bounds()))
+            .ok_or(DistributedError::NoMesh)?;
+        let origin = centring_origin(bounds.0, bounds.1);
+        let loaded = match subset {
+            Some(s) => Some(tetray_io::load_piece_subset(s, origin, options)?),
+            None => None,
+        };
+        let cells = loaded.as_ref().map_or(0, LoadedMesh::input_cells);
+        return Ok((name, loaded, cells, origin));
     }
     let input = tetray_engine::load(source)?;
     let whole = &input.loaded;

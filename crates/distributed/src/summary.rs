@@ -6,7 +6,7 @@
 //! [`MeshSummary::to_reduce`]).
 
 use glam::Vec3;
-use tetray_mesh::{mean_chord, paraview_unit_distance, tet_chord_sum, value_range, TetMesh};
+use tetray_mesh::{TetMesh, mean_chord, paraview_unit_distance, tet_chord_sum, value_range};
 
 /// One rank's piece, or (combined) the whole mesh.
 #[derive(Debug, Clone, PartialEq)]

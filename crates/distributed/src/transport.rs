@@ -6,17 +6,17 @@
 use std::time::{Duration, Instant};
 
 use glam::DVec3;
+use mpi::Count;
 use mpi::collective::SystemOperation;
 use mpi::datatype::{Partition, PartitionMut};
 use mpi::traits::*;
-use mpi::Count;
 use tetray_core::Image;
 use tetray_raycast::Fragment;
 
+use crate::DistributedError;
 use crate::composite::{assemble, bucket_by_owner, composite_owned, prefix_sums};
 use crate::layout::TileLayout;
 use crate::summary::{MeshSummary, Reduce};
-use crate::DistributedError;
 
 /// 32-bit words per fragment on the wire.
 const WORDS: usize = std::mem::size_of::<Fragment>() / 4;

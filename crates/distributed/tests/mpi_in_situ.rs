@@ -20,7 +20,9 @@ fn mpirun() -> Option<PathBuf> {
             std::env::var("TETRAY_REQUIRE_MPI").as_deref() != Ok("1"),
             "TETRAY_REQUIRE_MPI=1 but no mpirun on PATH"
         );
-        eprintln!("SKIPPED: no mpirun on PATH (install openmpi-bin; TETRAY_REQUIRE_MPI=1 makes this a failure)");
+        eprintln!(
+            "SKIPPED: no mpirun on PATH (install openmpi-bin; TETRAY_REQUIRE_MPI=1 makes this a failure)"
+        );
     }
     found
 }

@@ -8,11 +8,11 @@
 use glam::Vec3;
 use tetray_boundary_bvh::BuildPreset;
 use tetray_core::Camera;
-use tetray_distributed::{assemble, bucket_by_owner, composite_owned, spatial_split, TileLayout};
+use tetray_distributed::{TileLayout, assemble, bucket_by_owner, composite_owned, spatial_split};
 use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunction};
-use tetray_mesh::synthetic::{add_field, hollow_box, CellSplit, ScalarSpec};
+use tetray_mesh::synthetic::{CellSplit, ScalarSpec, add_field, hollow_box};
 use tetray_mesh::{TetMesh, Topology};
-use tetray_raycast::{render_scalar, render_scalar_fragments, RenderOptions};
+use tetray_raycast::{RenderOptions, render_scalar, render_scalar_fragments};
 use tetray_scene::Scene;
 
 fn scene(mesh: TetMesh) -> Scene {

@@ -2,9 +2,9 @@
 //! values given, then the turns (the oblique default when none is given).
 
 use glam::{DVec3, Vec3};
-use tetray_core::{relative_to_origin, Camera};
+use tetray_core::{Camera, relative_to_origin};
 
-use crate::error::{bail, Context, EngineError};
+use crate::error::{Context, EngineError, bail};
 use crate::options::{CameraOptions, Log};
 
 /// The camera: VTK's ResetCamera fit of `bounds` for a `width x height`

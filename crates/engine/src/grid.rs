@@ -14,12 +14,12 @@ use tetray_io::ImageGrid;
 use tetray_mesh::{centring_origin, default_field_of, mean_tet_chord};
 use tetray_shearwarp::{Classification, ClassifyOptions, RegularGrid, ShearWarp, ShearWarpOptions};
 
-use crate::error::{bail, Context, EngineError};
-use crate::fields::{unknown_field, SOLID};
+use crate::error::{Context, EngineError, bail};
+use crate::fields::{SOLID, unknown_field};
 use crate::frame::{Frame, FrameStats};
 use crate::options::{FrameOptions, Log};
 use crate::setup::{Extent, Setup, Volume};
-use crate::source::{check_file, plural, Source};
+use crate::source::{Source, check_file, plural};
 
 /// Reads the image data of `source` as its regular grid alone and makes
 /// the camera, transfer function and integrator options as

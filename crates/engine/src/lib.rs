@@ -33,14 +33,14 @@ pub use camera::{build_camera, warn_if_inside};
 pub use error::EngineError;
 pub use fields::SOLID;
 pub use frame::{Frame, FrameStats};
-pub use measure::{measure, median, Measured, Timing};
+pub use measure::{Measured, Timing, measure, median};
 pub use options::{
-    bvh_preset_for, CameraOptions, FrameOptions, IntegratorChoice, Log, RendererChoice,
-    Representation, TfSource, WalkOptions,
+    CameraOptions, FrameOptions, IntegratorChoice, Log, RendererChoice, Representation, TfSource,
+    WalkOptions, bvh_preset_for,
 };
-pub use prepare::{prepare, EMBEDDED_VIEW};
+pub use prepare::{EMBEDDED_VIEW, prepare};
 pub use renderer::{Engine, GpuEngine, ProjectEngine};
-pub use segment::{segment, SegmentOptions};
-pub use setup::{prepare_mesh, prepare_part, Extent, Setup, Volume};
-pub use source::{load, plural, MeshInput, Source, EMBEDDED_NAME};
+pub use segment::{SegmentOptions, segment};
+pub use setup::{Extent, Setup, Volume, prepare_mesh, prepare_part};
+pub use source::{EMBEDDED_NAME, MeshInput, Source, load, plural};
 pub use tetray_core::defaults::DEFAULT_VIEW;

@@ -83,7 +83,7 @@ pub fn measure(
                 .context("orbiting the camera")?;
         }
     }
-    let stats: Vec<FrameStats> = frames.iter().map(|f| f.stats.clone()).collect();
+    let stats: Vec<FrameStats> = frames.iter().map(|f| f.stats).collect();
     let total = stats
         .iter()
         .fold(WalkCounters::default(), |t, s| t.merge(s.counters));

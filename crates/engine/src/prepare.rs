@@ -4,8 +4,8 @@
 use crate::error::EngineError;
 use crate::grid::prepare_grid;
 use crate::options::{FrameOptions, Log, Representation, TfSource};
-use crate::setup::{prepare_mesh, Setup};
-use crate::source::{load, load_image_data, Source};
+use crate::setup::{Setup, prepare_mesh};
+use crate::source::{Source, load, load_image_data};
 
 /// Loads `source` and makes everything a frame needs, reporting each step
 /// through `log`: the representations `options` ask for, the camera (before
@@ -14,10 +14,10 @@ use crate::source::{load, load_image_data, Source};
 pub fn prepare(source: Source, options: &FrameOptions, log: Log<'_>) -> Result<Setup, EngineError> {
     if let Source::Embedded = source {
         let options = embedded_defaults(options);
-        if let TfSource::ParaView { label, .. } = &options.integrator.tf {
-            if label == EMBEDDED_PRESET_LABEL {
-                (log.info)(format!("transfer function: {EMBEDDED_PRESET_LABEL}"));
-            }
+        if let TfSource::ParaView { label, .. } = &options.integrator.tf
+            && label == EMBEDDED_PRESET_LABEL
+        {
+            (log.info)(format!("transfer function: {EMBEDDED_PRESET_LABEL}"));
         }
         return prepare_mesh(load(source)?, None, &options, log);
     }

@@ -5,9 +5,9 @@
 use tetray_core::{Camera, Method, WalkCounters};
 use tetray_gpu::{GpuContext, GpuIntegrator, GpuRaycaster, GpuRenderOptions, GpuScene};
 use tetray_project::{ProjectOptions, Projection};
-use tetray_raycast::{render_scalar_with_progress, RenderOptions};
+use tetray_raycast::{RenderOptions, render_scalar_with_progress};
 
-use crate::error::{bail, Context, EngineError};
+use crate::error::{Context, EngineError, bail};
 use crate::frame::{Frame, FrameStats};
 use crate::options::{RendererChoice, WalkOptions};
 use crate::setup::Setup;

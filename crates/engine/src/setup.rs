@@ -13,13 +13,13 @@ use tetray_integrate::{
     IntegratorOptions, Method, OpacityMode, ScalarIntegrator, TransferFunction,
 };
 use tetray_io::ImageGrid;
-use tetray_mesh::{default_field, mean_tet_chord, value_range, LoadedMesh, ScalarField};
+use tetray_mesh::{LoadedMesh, ScalarField, default_field, mean_tet_chord, value_range};
 use tetray_scene::Scene;
 
 use crate::camera::{build_camera, warn_if_inside};
-use crate::error::{bail, Context, EngineError};
-use crate::fields::{unknown_field, SOLID};
-use crate::options::{bvh_preset_for, CameraOptions, FrameOptions, IntegratorChoice, Log};
+use crate::error::{Context, EngineError, bail};
+use crate::fields::{SOLID, unknown_field};
+use crate::options::{CameraOptions, FrameOptions, IntegratorChoice, Log, bvh_preset_for};
 use crate::source::MeshInput;
 use crate::tf;
 

@@ -8,10 +8,10 @@ use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
 use tetray_io::{DataKind, ImageGrid, LoadOptions};
-use tetray_mesh::cells::CellGrid;
 use tetray_mesh::LoadedMesh;
+use tetray_mesh::cells::CellGrid;
 
-use crate::error::{bail, EngineError};
+use crate::error::{EngineError, bail};
 
 /// The embedded default dataset: NASA's Blunt Fin, PLOT3D big-endian.
 const BLUNT_FIN_XYZ: &[u8] = include_bytes!("../../../data/plot3d/bluntfinxyz.bin");
@@ -225,9 +225,5 @@ fn check_time_series(
 }
 
 pub fn plural(n: usize) -> &'static str {
-    if n == 1 {
-        ""
-    } else {
-        "s"
-    }
+    if n == 1 { "" } else { "s" }
 }

@@ -11,7 +11,7 @@ use tetray_integrate::{
     TransferFunction,
 };
 
-use crate::error::{bail, Context, EngineError};
+use crate::error::{Context, EngineError, bail};
 use crate::fields::SOLID;
 use crate::options::{IntegratorChoice, Log, TfSource};
 
@@ -45,7 +45,7 @@ pub fn transfer_function(
             range: Some(range),
         } => return normalized(color, opacity, *range),
         TfSource::Normalized { color, opacity, .. } if lo < hi => {
-            return normalized(color, opacity, (lo, hi))
+            return normalized(color, opacity, (lo, hi));
         }
         _ => {}
     }

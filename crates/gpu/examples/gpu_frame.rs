@@ -9,8 +9,8 @@ use tetray_boundary_bvh::BuildPreset;
 use tetray_core::Camera;
 use tetray_gpu::{GpuContext, GpuIntegrator, GpuRaycaster, GpuRenderOptions, GpuScene};
 use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunction};
-use tetray_io::{load, LoadOptions};
-use tetray_raycast::{render_scalar, RenderOptions};
+use tetray_io::{LoadOptions, load};
+use tetray_raycast::{RenderOptions, render_scalar};
 use tetray_scene::Scene;
 
 fn main() -> anyhow::Result<()> {

@@ -33,7 +33,9 @@ pub enum GpuError {
     Image(#[from] ImageError),
     #[error("early termination threshold {0} must be in (0, 1] (1 disables it)")]
     EarlyTermination(f32),
-    #[error("image {width}x{height} has too many pixels for one output buffer ({bytes} bytes, limit {limit})")]
+    #[error(
+        "image {width}x{height} has too many pixels for one output buffer ({bytes} bytes, limit {limit})"
+    )]
     ImageTooLarge {
         width: u32,
         height: u32,

@@ -9,7 +9,7 @@ use tetray_core::{Camera, Image, WalkCounters};
 use wgpu::util::DeviceExt;
 
 use crate::layout::{self, Params, SceneLayout, Tile, ViewParams};
-use crate::readback::{read_buffer, readback_buffer, PassTimestamps};
+use crate::readback::{PassTimestamps, read_buffer, readback_buffer};
 use crate::shaders::raycast_source;
 use crate::upload::{GpuIntegrator, GpuScene, IntegratorData};
 use crate::{GpuContext, GpuError, GpuTarget};

@@ -12,7 +12,7 @@ use tetray_integrate::{GammaSpacing, Method, Model, ScalarIntegrator};
 use tetray_scene::Scene;
 use wgpu::util::DeviceExt;
 
-use crate::layout::{IntegratorParams, SceneLayout, INTERVAL_ENTRIES, PREINT_ENTRIES};
+use crate::layout::{INTERVAL_ENTRIES, IntegratorParams, PREINT_ENTRIES, SceneLayout};
 use crate::{GpuContext, GpuError};
 
 /// Storage bindings an array may be split over.
@@ -395,11 +395,7 @@ fn pack_intervals(knots: &tetray_integrate::TfKnots, opacity: bool) -> Vec<[f32;
     let n = scalars.len();
     let quantity = |k: usize| {
         let m = &materials[k];
-        if opacity {
-            m.alpha
-        } else {
-            m.tau
-        }
+        if opacity { m.alpha } else { m.tau }
     };
     let mut out = Vec::with_capacity(INTERVAL_ENTRIES * (n + 1));
     let mut push = |x0: f32, inv_width: f32, k0: usize, k1: usize| {

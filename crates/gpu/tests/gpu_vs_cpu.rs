@@ -29,7 +29,7 @@ use tetray_integrate::{
     TransferFunction,
 };
 use tetray_mesh::synthetic::{
-    add_field, box_grid, hollow_box, jittered_box, two_boxes, CellSplit, ScalarSpec,
+    CellSplit, ScalarSpec, add_field, box_grid, hollow_box, jittered_box, two_boxes,
 };
 use tetray_scene::Scene;
 

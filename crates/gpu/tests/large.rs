@@ -9,8 +9,8 @@ use support::{assert_close, gpu, scene};
 use tetray_core::Camera;
 use tetray_gpu::{GpuError, GpuIntegrator, GpuRenderOptions, GpuScene, SceneData, TILE};
 use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunction};
-use tetray_mesh::synthetic::{add_field, jittered_box, CellSplit, ScalarSpec};
-use tetray_raycast::{render_scalar, RenderOptions};
+use tetray_mesh::synthetic::{CellSplit, ScalarSpec, add_field, jittered_box};
+use tetray_raycast::{RenderOptions, render_scalar};
 
 fn setup() -> (tetray_scene::Scene, ScalarIntegrator, Camera) {
     let (lo, hi) = (Vec3::ZERO, Vec3::new(2.0, 1.0, 1.0));

@@ -26,6 +26,9 @@ fn main() {
                 worst_nearest = worst_nearest.max((near - exact).abs());
             }
         }
-        println!("{spacing:?} n={n} build {build:?}: bilinear max {:.3e} at ({:.5}, {:.5}); nearest max {worst_nearest:.3e}", worst.0, worst.1, worst.2);
+        println!(
+            "{spacing:?} n={n} build {build:?}: bilinear max {:.3e} at ({:.5}, {:.5}); nearest max {worst_nearest:.3e}",
+            worst.0, worst.1, worst.2
+        );
     }
 }

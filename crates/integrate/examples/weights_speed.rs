@@ -1,10 +1,10 @@
 //! Throughput of the per-channel weight computations (ns per call).
 use std::hint::black_box;
 use std::time::Instant;
+use tetray_integrate::PsiTable;
 use tetray_integrate::average::average_weights;
 use tetray_integrate::exact::exact_weights;
 use tetray_integrate::ppi::ppi_weights;
-use tetray_integrate::PsiTable;
 
 fn main() {
     let size = std::env::var("PSI_SIZE").map_or(1024, |s| s.parse().unwrap());

@@ -250,9 +250,5 @@ fn spun_hue(saturated: [f64; 3], m_unsaturated: f64) -> f64 {
         return h;
     }
     let spin = s * (m_unsaturated * m_unsaturated - m * m).sqrt() / (m * s.sin());
-    if h > -PI / 3.0 {
-        h + spin
-    } else {
-        h - spin
-    }
+    if h > -PI / 3.0 { h + spin } else { h - spin }
 }

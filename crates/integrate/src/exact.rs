@@ -16,7 +16,7 @@
 //!   `M_k(b) = int_0^1 x^k exp(-b x) dx`; at `a = b = 0` this gives
 //!   `Psi = 1`, `I = I_0` (the `tau D -> 0` limit).
 
-use crate::segment::{light_from_weights, SegmentLight, SegmentParams, Weights};
+use crate::segment::{SegmentLight, SegmentParams, Weights, light_from_weights};
 use crate::special::{dawson, erfcx};
 
 /// Below this `|c|` the series in `c` is used: its first omitted term is

@@ -33,11 +33,7 @@ pub fn exp_f32(x: f32) -> f32 {
 pub fn exp_f32_select(x: f32) -> f32 {
     let v = exp_in_range(x);
     let v = if x > 88.0 { f32::INFINITY } else { v };
-    if x < -87.0 {
-        0.0
-    } else {
-        v
-    }
+    if x < -87.0 { 0.0 } else { v }
 }
 
 /// `e^x` for `x` in `[-87, 88]` (and NaN); other `x` give anything.
@@ -89,22 +85,14 @@ pub fn by_fours<const N: usize>(
 /// unordered).
 #[inline(always)]
 pub fn min_f32(a: f32, b: f32) -> f32 {
-    if b < a {
-        b
-    } else {
-        a
-    }
+    if b < a { b } else { a }
 }
 
 /// The larger of `a` and `b` by one comparison (`a` when they are
 /// unordered).
 #[inline(always)]
 pub fn max_f32(a: f32, b: f32) -> f32 {
-    if b > a {
-        b
-    } else {
-        a
-    }
+    if b > a { b } else { a }
 }
 
 /// `x` clamped into `[lo, hi]` (`lo <= hi`) by plain comparisons: a NaN

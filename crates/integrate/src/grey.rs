@@ -8,7 +8,7 @@
 use glam::{Vec3A, Vec4};
 
 use crate::fastmath::clamp_f32;
-use crate::knots::{split_at_knots, TfKnots};
+use crate::knots::{TfKnots, split_at_knots};
 
 /// Which quantity a grey material carries in `w`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

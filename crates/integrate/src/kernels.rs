@@ -19,7 +19,7 @@ use crate::ppi::{ppi_weights, ppi_weights_lanes};
 use crate::preintegrated::PreintegrationTable;
 use crate::psi::PsiTable;
 use crate::reference;
-use crate::segment::{light_from_weights, SampledSegment, SegmentLight, Weights};
+use crate::segment::{SampledSegment, SegmentLight, Weights, light_from_weights};
 
 /// Per-channel weights of eq. 5.5 from the end values of the method's
 /// quantity (`tau D` or opacity) at the back and front.

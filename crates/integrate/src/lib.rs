@@ -42,7 +42,7 @@ pub mod special;
 mod tf;
 
 pub use error::IntegrateError;
-pub use kernels::{KernelVisitor, SegmentKernel, Typed, RIEMANN_MAX_SAMPLES};
+pub use kernels::{KernelVisitor, RIEMANN_MAX_SAMPLES, SegmentKernel, Typed};
 pub use knots::{KnotSample, Material, OpacityMode, Piece, TfKnots};
 pub use preintegrated::PreintegrationTable;
 pub use psi::{GammaSpacing, PsiTable};

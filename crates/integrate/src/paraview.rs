@@ -16,7 +16,7 @@ use crate::tf::{TfError, TransferFunction};
 
 mod pieces;
 
-use pieces::{color_points, opacity_points, ScalarMap};
+use pieces::{ScalarMap, color_points, opacity_points};
 
 /// Marker for the bare `NaN` / `Infinity` tokens some writers emit (Python's
 /// `json`), so that they are reported by key and index instead of as a
@@ -136,7 +136,7 @@ impl TransferFunction {
                 return Err(fail(format!(
                     "\"ColorSpace\" is {}, not a string",
                     describe(v)
-                )))
+                )));
             }
         };
 
@@ -302,7 +302,7 @@ fn select_preset<'a>(
             return Err(TfError::Preset(format!(
                 "a preset file holds a JSON object or an array of them, not {}",
                 describe(other)
-            )))
+            )));
         }
     };
     let mut named = Vec::with_capacity(presets.len());

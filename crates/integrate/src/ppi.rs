@@ -6,7 +6,7 @@ use glam::Vec4;
 
 use crate::fastmath::{by_fours, clamp_f32, exp_f32, exp_f32_select};
 use crate::psi::PsiTable;
-use crate::segment::{light_from_weights, SegmentLight, SegmentParams, Weights};
+use crate::segment::{SegmentLight, SegmentParams, Weights, light_from_weights};
 
 /// Eq. 5.5 weights for one channel. Psi is a mean transmittance between
 /// the segment and the eye, so it lies in `[zeta, 1]`; the clamp keeps
@@ -57,7 +57,7 @@ pub fn ppi_segment(table: &PsiTable, p: &SegmentParams) -> SegmentLight {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::psi::{test_tau_d, GammaSpacing};
+    use crate::psi::{GammaSpacing, test_tau_d};
 
     /// The lanes give each segment's single-segment weights to the bit, over
     /// the attenuations a walk produces (`tau D >= 0`, up to infinity) and

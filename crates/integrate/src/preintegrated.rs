@@ -10,10 +10,10 @@ use std::time::{Duration, Instant};
 use glam::Vec3A;
 use rayon::prelude::*;
 
+use crate::IntegrateError;
 use crate::exact::exact_weights;
 use crate::knots::{Piece, TfKnots};
-use crate::segment::{light_from_weights, SegmentLight};
-use crate::IntegrateError;
+use crate::segment::{SegmentLight, light_from_weights};
 
 pub const PREINTEGRATION_MIN: usize = 2;
 pub const PREINTEGRATION_MAX: usize = 4096;

@@ -15,9 +15,9 @@ use std::sync::{Arc, Mutex, OnceLock};
 use glam::Vec4;
 use rayon::prelude::*;
 
+use crate::IntegrateError;
 use crate::fastmath::by_fours;
 use crate::special::gauss_legendre_panel;
-use crate::IntegrateError;
 
 /// Exponent drop (in e-folds) covered by one 16-point Gauss-Legendre panel:
 /// `exp(-4 t)` on `[0, 1]` is integrated to 1e-16 by that rule.

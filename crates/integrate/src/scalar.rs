@@ -7,6 +7,7 @@ use std::time::{Duration, Instant};
 
 use glam::Vec3;
 
+use crate::IntegrateError;
 use crate::grey::{GreyKnots, Lane};
 use crate::kernels::{
     Average, Exact, Grey, KernelVisitor, OpacityKernel, OpacityMethod, Ppi, Preintegrated,
@@ -17,7 +18,6 @@ use crate::preintegrated::PreintegrationTable;
 use crate::psi::{GammaSpacing, PsiTable};
 use crate::segment::{SegmentLight, SegmentParams};
 use crate::tf::TransferFunction;
-use crate::IntegrateError;
 use tetray_core::defaults::{PREINTEGRATION_TABLE_SIZE, PSI_TABLE_SIZE};
 use tetray_core::method::Method;
 

@@ -31,7 +31,9 @@ pub enum TfError {
         index: usize,
         scalar: f32,
     },
-    #[error("{what} points are not in increasing scalar order at point {index} ({previous} then {scalar})")]
+    #[error(
+        "{what} points are not in increasing scalar order at point {index} ({previous} then {scalar})"
+    )]
     Unsorted {
         what: &'static str,
         index: usize,

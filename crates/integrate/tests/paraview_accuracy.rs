@@ -2,8 +2,8 @@
 //! interpolation and the opacity curves they replace, and the colour-space
 //! maths against published values.
 
-use tetray_integrate::colorspace::{self, ColorSpace};
 use tetray_integrate::TransferFunction;
+use tetray_integrate::colorspace::{self, ColorSpace};
 
 /// The error budget of the piecewise-linear approximations (colour and
 /// opacity units).

@@ -28,12 +28,12 @@ pub mod plot3d;
 pub mod vtk;
 
 pub use error::IoError;
-pub use exodus::{read_exodus_bytes, read_exodus_file, ExodusError, ExodusOptions, ExodusRead};
+pub use exodus::{ExodusError, ExodusOptions, ExodusRead, read_exodus_bytes, read_exodus_file};
 pub use load::{
-    load, load_grid, load_image_data, load_piece_subset, load_plot3d_bytes, plot3d_q_sibling,
-    LoadOptions,
+    LoadOptions, load, load_grid, load_image_data, load_piece_subset, load_plot3d_bytes,
+    plot3d_q_sibling,
 };
-pub use plot3d::{read_plot3d_bytes, read_plot3d_files, Plot3dRead};
-pub use probe::{probe, DataKind, Probe};
+pub use plot3d::{Plot3dRead, read_plot3d_bytes, read_plot3d_files};
+pub use probe::{DataKind, Probe, probe};
 pub use tetray_mesh::{ElementBlock, LoadReport, LoadedMesh};
-pub use vtk::{read_image_grid, ImageGrid, VtkError};
+pub use vtk::{ImageGrid, VtkError, read_image_grid};

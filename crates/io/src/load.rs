@@ -7,12 +7,12 @@ use std::path::{Path, PathBuf};
 
 use glam::DVec3;
 use tetray_mesh::cells::{CellCounts, CellGrid};
-use tetray_mesh::{finish, LoadedMesh, MeshRead};
+use tetray_mesh::{LoadedMesh, MeshRead, finish};
 
-use crate::exodus::{read_exodus_file, ExodusOptions, ExodusRead};
-use crate::plot3d::{read_plot3d_bytes, read_plot3d_files, Plot3dRead};
-use crate::probe::{format_of, probe, Format};
-use crate::{vtk, IoError};
+use crate::exodus::{ExodusOptions, ExodusRead, read_exodus_file};
+use crate::plot3d::{Plot3dRead, read_plot3d_bytes, read_plot3d_files};
+use crate::probe::{Format, format_of, probe};
+use crate::{IoError, vtk};
 
 /// Options of [`load`].
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -256,25 +256,6 @@ fn from_plot3d(read: Plot3dRead) -> MeshRead {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn q_siblings() {
-        let p = Path::new;
-        assert_eq!(
-            plot3d_q_sibling(p("d/postxyz.bin")),
-            Some(PathBuf::from("d/postq.bin"))
-        );
-        assert_eq!(
-            plot3d_q_sibling(p("d/Wing.XYZ")),
-            Some(PathBuf::from("d/Wing.q"))
-        );
-        assert_eq!(plot3d_q_sibling(p("grid.x")), Some(PathBuf::from("grid.q")));
-    }
-}
-
 /// Reads an image-data file (`.vti`, legacy STRUCTURED_POINTS) once as
 /// both what it is: the mesh [`load`] makes of it, and its regular grid.
 ///
@@ -297,4 +278,23 @@ pub fn load_image_data(
     };
     let mesh = finish(from_vtk(read, format)).map_err(|e| e.in_file(&file))?;
     Ok((mesh, image))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn q_siblings() {
+        let p = Path::new;
+        assert_eq!(
+            plot3d_q_sibling(p("d/postxyz.bin")),
+            Some(PathBuf::from("d/postq.bin"))
+        );
+        assert_eq!(
+            plot3d_q_sibling(p("d/Wing.XYZ")),
+            Some(PathBuf::from("d/Wing.q"))
+        );
+        assert_eq!(plot3d_q_sibling(p("grid.x")), Some(PathBuf::from("grid.q")));
+    }
 }

@@ -78,7 +78,7 @@ pub fn probe(path: &Path) -> Result<Probe, IoError> {
                 return Err(IoError::UnknownFormat {
                     file,
                     seen: describe_head(&head),
-                })
+                });
             }
         },
     };

@@ -6,7 +6,7 @@
 //! `imperfect.rs` for the images).
 
 use tetray_io::vtk::read_legacy_bytes;
-use tetray_io::{load, LoadOptions};
+use tetray_io::{LoadOptions, load};
 
 /// Two unit hexahedra side by side along x. The first lists its points as
 /// global ids `[3, 1, 2, 0, 4, 5, 6, 7]` and has its corner (0, 0, 0)

@@ -9,7 +9,7 @@ use std::time::Instant;
 
 use exodus_common::{Block, ElemVar, Model, Version};
 use tetray_io::{
-    load, read_exodus_bytes, ElementBlock, ExodusError, ExodusOptions, IoError, LoadOptions,
+    ElementBlock, ExodusError, ExodusOptions, IoError, LoadOptions, load, read_exodus_bytes,
 };
 use tetray_mesh::{MeshSummary, TetMesh};
 

@@ -11,7 +11,7 @@ use std::path::PathBuf;
 
 use exodus_common::{Block, Model, Version};
 use tetray_io::vtk::Linearize;
-use tetray_io::{load, LoadOptions, LoadedMesh};
+use tetray_io::{LoadOptions, LoadedMesh, load};
 
 /// Exodus node order of the mid-edge nodes (SEACAS Exodus II manual,
 /// 0-based corners): TETRA10 nodes 5-10, HEX20 nodes 9-20.

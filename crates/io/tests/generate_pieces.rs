@@ -4,10 +4,10 @@
 
 use std::collections::BTreeSet;
 
+use tetray_io::generate::GenerateError;
 use tetray_io::generate::pieces::write_pvtu;
 use tetray_io::generate::solid::TorusShell;
-use tetray_io::generate::GenerateError;
-use tetray_io::{load, LoadOptions};
+use tetray_io::{LoadOptions, load};
 
 #[test]
 fn the_pieces_weld_into_the_whole_shell() {

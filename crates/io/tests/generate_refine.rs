@@ -6,13 +6,13 @@
 use std::f32::consts::PI;
 
 use tetray_io::generate::GenerateError;
-use tetray_io::generate::{near_uniform_factors, refine, Refinement, RefinementPlan};
+use tetray_io::generate::{Refinement, RefinementPlan, near_uniform_factors, refine};
 use tetray_io::plot3d::{
-    plot3d_split_counts, write_plot3d_q, write_plot3d_xyz, Plot3dGrid, Plot3dSolution, Plot3dSource,
+    Plot3dGrid, Plot3dSolution, Plot3dSource, plot3d_split_counts, write_plot3d_q, write_plot3d_xyz,
 };
-use tetray_io::{load_plot3d_bytes, LoadedMesh};
+use tetray_io::{LoadedMesh, load_plot3d_bytes};
 use tetray_mesh::structured::{boundary_quad_count, hex_count};
-use tetray_mesh::{Topology, NO_NEIGHBOR};
+use tetray_mesh::{NO_NEIGHBOR, Topology};
 
 /// A `dims` grid filling the unit box, its interior bent by a smooth
 /// displacement that vanishes across each side, so every boundary quad
@@ -408,10 +408,12 @@ fn cells_too_thin_for_f32_are_avoided() {
         .find(|f| 112 * f.iter().product::<usize>() >= 8000)
         .unwrap();
     assert_eq!(first, [4, 4, 5]);
-    assert!(RefinementPlan::for_factors(&grid, first)
-        .unwrap()
-        .defect()
-        .is_some());
+    assert!(
+        RefinementPlan::for_factors(&grid, first)
+            .unwrap()
+            .defect()
+            .is_some()
+    );
     let plan = RefinementPlan::for_tets(&grid, 8000).unwrap();
     assert!(
         plan.defect().is_none() && plan.counts.tets >= 8000,

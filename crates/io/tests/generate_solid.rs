@@ -6,14 +6,14 @@
 use std::collections::HashMap;
 
 use glam::{DVec3, Vec3};
-use tetray_io::generate::solid::{linear, wave, TorusShell, FIELDS};
-use tetray_io::generate::GenerateError;
-use tetray_io::vtk::{
-    read_vtu_bytes, read_vtu_file, write_vtu_streamed, write_vtu_with, TetChunks, VtuEncoding,
-    VtuIndex, VtuOptions, VtuStreamOptions,
-};
 use tetray_io::LoadedMesh;
-use tetray_mesh::{prepare, TetMesh, Topology};
+use tetray_io::generate::GenerateError;
+use tetray_io::generate::solid::{FIELDS, TorusShell, linear, wave};
+use tetray_io::vtk::{
+    TetChunks, VtuEncoding, VtuIndex, VtuOptions, VtuStreamOptions, read_vtu_bytes, read_vtu_file,
+    write_vtu_streamed, write_vtu_with,
+};
+use tetray_mesh::{TetMesh, Topology, prepare};
 
 fn shell_mesh(cells: [usize; 3]) -> (TorusShell, LoadedMesh) {
     let shell = TorusShell::new(cells).unwrap();
@@ -245,7 +245,9 @@ fn the_streamed_vtu_reads_back_bit_exact() {
     assert_eq!(read.mesh, mesh);
     assert!(read.warnings.is_empty(), "{:?}", read.warnings);
     let text = std::fs::read(&path).unwrap();
-    assert!(String::from_utf8_lossy(&text[..2000]).contains("type=\"Int32\" Name=\"connectivity\""));
+    assert!(
+        String::from_utf8_lossy(&text[..2000]).contains("type=\"Int32\" Name=\"connectivity\"")
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 
     // The streaming writer with Int64 indices writes what the in-memory

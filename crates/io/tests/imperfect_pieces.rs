@@ -13,8 +13,8 @@ use std::path::PathBuf;
 
 use exodus_common::{Block, Model, Version};
 use glam::DVec3;
-use structured_common::{array, unstructured_piece, xml_file, Enc};
-use tetray_io::{load, LoadOptions, LoadedMesh};
+use structured_common::{Enc, array, unstructured_piece, xml_file};
+use tetray_io::{LoadOptions, LoadedMesh, load};
 
 /// Far from zero: stored relative to an origin near the mesh.
 const OFFSET: DVec3 = DVec3::new(7.0e6, -3.0e6, 1.0e6);

@@ -9,7 +9,7 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
 use tetray_io::vtk::{parallel_piece_count, read_piece_subset};
-use tetray_io::{load, load_piece_subset, LoadOptions, LoadedMesh};
+use tetray_io::{LoadOptions, LoadedMesh, load, load_piece_subset};
 
 fn pvtu() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/real/blood_vessels/T0000000500.pvtu")

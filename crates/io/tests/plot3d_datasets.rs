@@ -5,9 +5,9 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use tetray_io::{load, LoadOptions, LoadedMesh};
+use tetray_io::{LoadOptions, LoadedMesh, load};
 use tetray_mesh::structured::{boundary_quad_count, structured_tets};
-use tetray_mesh::{tet_shape, MeshSummary, TetMesh, Topology, NO_NEIGHBOR};
+use tetray_mesh::{MeshSummary, NO_NEIGHBOR, TetMesh, Topology, tet_shape};
 
 fn data_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/plot3d")
@@ -88,7 +88,7 @@ fn check_conforming(loaded: &LoadedMesh, dims: [usize; 3], parity: usize) -> usi
     let dropped_volume: f64 = shapes
         .iter()
         .zip(&dropped)
-        .filter(|(_, &d)| d)
+        .filter(|&(_, &d)| d)
         .map(|(s, _)| s.volume6.abs())
         .sum();
     let total: f64 = shapes.iter().map(|s| s.volume6.abs()).sum();

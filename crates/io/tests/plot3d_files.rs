@@ -5,7 +5,7 @@
 
 use std::path::Path;
 
-use tetray_io::{load, load_plot3d_bytes, read_plot3d_bytes, IoError, LoadOptions, Plot3dRead};
+use tetray_io::{IoError, LoadOptions, Plot3dRead, load, load_plot3d_bytes, read_plot3d_bytes};
 use tetray_mesh::MeshError;
 
 /// How a synthetic file is written.
@@ -416,11 +416,13 @@ fn load_dispatches_by_name() {
     let loaded = load(&vtk, &LoadOptions::default()).unwrap();
     assert_eq!(loaded.report.excluded.flat_tets, 1);
     assert_eq!(loaded.mesh.tets, [[0, 1, 2, 3]]);
-    assert!(loaded
-        .report
-        .changes()
-        .unwrap()
-        .contains("1 flat tetrahedra dropped"));
+    assert!(
+        loaded
+            .report
+            .changes()
+            .unwrap()
+            .contains("1 flat tetrahedra dropped")
+    );
     // Unknown names: the content decides; a file it does not name either
     // is an error saying what the file starts with, a missing one an I/O
     // error.

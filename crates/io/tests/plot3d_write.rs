@@ -5,10 +5,10 @@
 use std::path::Path;
 
 use tetray_io::plot3d::{
-    plot3d_q_bytes, plot3d_xyz_bytes, read_plot3d_grid_bytes, read_plot3d_grid_files,
-    write_plot3d_files, write_plot3d_q, write_plot3d_xyz, Plot3dGrid, Plot3dSolution,
+    Plot3dGrid, Plot3dSolution, plot3d_q_bytes, plot3d_xyz_bytes, read_plot3d_grid_bytes,
+    read_plot3d_grid_files, write_plot3d_files, write_plot3d_q, write_plot3d_xyz,
 };
-use tetray_io::{load, load_plot3d_bytes, LoadOptions};
+use tetray_io::{LoadOptions, load, load_plot3d_bytes};
 
 fn grid(iblank: bool, solution: bool) -> Plot3dGrid {
     let dims = [4, 3, 5];

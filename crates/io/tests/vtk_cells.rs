@@ -4,8 +4,8 @@
 
 mod vtk_common;
 
-use tetray_io::vtk::{read_legacy_bytes, CellCounts};
-use vtk_common::{conforming_boundary, face_counts, volume6, Lcg};
+use tetray_io::vtk::{CellCounts, read_legacy_bytes};
+use vtk_common::{Lcg, conforming_boundary, face_counts, volume6};
 
 /// A unit hexahedron with a wedge on its x = 1 face, a pyramid on top, a
 /// voxel on its y = 1 face; two tetrahedra apart; a triangle and a line.

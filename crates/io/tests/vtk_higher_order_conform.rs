@@ -11,8 +11,8 @@ mod vtk_common;
 use std::collections::HashMap;
 use std::fmt::Write;
 
-use tetray_io::vtk::{read_legacy_bytes, read_legacy_bytes_with, Linearize, ReadOptions};
-use vtk_common::{face_counts, volume6, Lcg};
+use tetray_io::vtk::{Linearize, ReadOptions, read_legacy_bytes, read_legacy_bytes_with};
+use vtk_common::{Lcg, face_counts, volume6};
 
 /// A cell type as the test sees it: each node (VTK order) is the mean of
 /// some corners; `rotations[r][c]` is the old corner that becomes corner c
@@ -212,7 +212,9 @@ impl Builder {
         for (new, &old) in order.iter().enumerate() {
             new_id[old as usize] = new as u32;
         }
-        let mut s = format!("# vtk DataFile Version 3.0\ncells\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS {n} double\n");
+        let mut s = format!(
+            "# vtk DataFile Version 3.0\ncells\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS {n} double\n"
+        );
         let xyz = |p: [i64; 3]| p.map(|v| v as f64 / SCALE as f64);
         for &old in &order {
             let [x, y, z] = xyz(self.points[old as usize]);

@@ -5,7 +5,7 @@
 mod vtk_common;
 
 use tetray_io::vtk::{
-    read_legacy_bytes, read_vtu_bytes, write_legacy, write_vtu, VtkError, VtkRead, VtuEncoding,
+    VtkError, VtkRead, VtuEncoding, read_legacy_bytes, read_vtu_bytes, write_legacy, write_vtu,
 };
 use vtk_common::sample_mesh;
 
@@ -333,11 +333,13 @@ fn vtu_err(text: &str) -> VtkError {
 
 #[test]
 fn vtu_count_index_and_value_errors() {
-    assert!(read_vtu_bytes(
-        vtu(&format!("{POINTS4}{}", cells("0 1 2 3", "4", "10")), "").as_bytes(),
-        "ok.vtu"
-    )
-    .is_ok());
+    assert!(
+        read_vtu_bytes(
+            vtu(&format!("{POINTS4}{}", cells("0 1 2 3", "4", "10")), "").as_bytes(),
+            "ok.vtu"
+        )
+        .is_ok()
+    );
     let e = vtu_err(&vtu(
         &format!("{POINTS4}{}", cells("0 1 2 3", "4 4", "10")),
         "",

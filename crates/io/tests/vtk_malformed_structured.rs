@@ -8,11 +8,11 @@ mod structured_common;
 use std::path::Path;
 
 use structured_common::{
-    array, extent_attr, section, unstructured_piece, warped_points, xml_file, Enc, Piece, TempDir,
-    ENCODINGS,
+    ENCODINGS, Enc, Piece, TempDir, array, extent_attr, section, unstructured_piece, warped_points,
+    xml_file,
 };
 use tetray_io::vtk::{
-    read_legacy_bytes, read_multiblock_file, read_parallel_file, read_vtu_bytes, VtkError,
+    VtkError, read_legacy_bytes, read_multiblock_file, read_parallel_file, read_vtu_bytes,
 };
 
 /// Where a written file is complete: the rest is closing tags the reader
@@ -413,12 +413,32 @@ fn inconsistent_legacy_structured_files_are_named_errors() {
 fn garbled_parallel_and_multiblock_files_are_named_errors() {
     let dir = TempDir::new("garbled-collections");
     let cases: [(&str, &str, &str); 6] = [
-        ("nopiece.pvtu", "<VTKFile type=\"PUnstructuredGrid\"><PUnstructuredGrid></PUnstructuredGrid></VTKFile>", "no <Piece Source=\"...\"> element"),
-        ("poly.pvtu", "<VTKFile type=\"PPolyData\"><PPolyData><Piece Source=\"a.vtp\"/></PPolyData></VTKFile>", "dataset \"PPolyData\" is not supported"),
+        (
+            "nopiece.pvtu",
+            "<VTKFile type=\"PUnstructuredGrid\"><PUnstructuredGrid></PUnstructuredGrid></VTKFile>",
+            "no <Piece Source=\"...\"> element",
+        ),
+        (
+            "poly.pvtu",
+            "<VTKFile type=\"PPolyData\"><PPolyData><Piece Source=\"a.vtp\"/></PPolyData></VTKFile>",
+            "dataset \"PPolyData\" is not supported",
+        ),
         ("root.pvtu", "<Other/>", "the root element is <Other>"),
-        ("tags.vtm", "<VTKFile type=\"vtkMultiBlockDataSet\"><vtkMultiBlockDataSet></Block></VTKFile>", "malformed XML"),
-        ("type.vtm", "<VTKFile type=\"vtkHierarchicalBoxDataSet\"><vtkHierarchicalBoxDataSet/></VTKFile>", "dataset \"vtkHierarchicalBoxDataSet\" is not supported"),
-        ("empty.vtm", "<VTKFile type=\"vtkMultiBlockDataSet\"><vtkMultiBlockDataSet/></VTKFile>", "holds no cells in 0 block files"),
+        (
+            "tags.vtm",
+            "<VTKFile type=\"vtkMultiBlockDataSet\"><vtkMultiBlockDataSet></Block></VTKFile>",
+            "malformed XML",
+        ),
+        (
+            "type.vtm",
+            "<VTKFile type=\"vtkHierarchicalBoxDataSet\"><vtkHierarchicalBoxDataSet/></VTKFile>",
+            "dataset \"vtkHierarchicalBoxDataSet\" is not supported",
+        ),
+        (
+            "empty.vtm",
+            "<VTKFile type=\"vtkMultiBlockDataSet\"><vtkMultiBlockDataSet/></VTKFile>",
+            "holds no cells in 0 block files",
+        ),
     ];
     for (name, text, want) in cases {
         let path = dir.write(name, text.as_bytes());

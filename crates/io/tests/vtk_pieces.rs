@@ -10,14 +10,14 @@ use std::path::Path;
 use std::time::Instant;
 
 use structured_common::{
-    array, block_hexes, extent_attr, real_data, section, unstructured_piece, warped_points,
-    xml_file, Enc, Piece, TempDir,
+    Enc, Piece, TempDir, array, block_hexes, extent_attr, real_data, section, unstructured_piece,
+    warped_points, xml_file,
 };
 use tetray_io::vtk::{
-    read_multiblock_file, read_parallel_file, read_vtu_bytes, read_vtu_file, write_vtu, VtkError,
-    VtuEncoding,
+    VtkError, VtuEncoding, read_multiblock_file, read_parallel_file, read_vtu_bytes, read_vtu_file,
+    write_vtu,
 };
-use tetray_io::{load, LoadOptions};
+use tetray_io::{LoadOptions, load};
 use tetray_mesh::TetMesh;
 use vtk_common::volume6;
 

@@ -6,8 +6,8 @@ mod vtk_common;
 
 use std::fmt::Write;
 
-use tetray_io::vtk::{read_legacy_bytes, read_vtu_bytes, VtkError, VtkRead};
-use vtk_common::{face_counts, volume6, Lcg};
+use tetray_io::vtk::{VtkError, VtkRead, read_legacy_bytes, read_vtu_bytes};
+use vtk_common::{Lcg, face_counts, volume6};
 
 /// Hexahedron faces, outward, in VTK corner order.
 const HEX_FACES: [[usize; 4]; 6] = [

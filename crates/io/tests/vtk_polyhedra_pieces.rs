@@ -8,8 +8,8 @@ mod vtk_common;
 use std::fmt::Write;
 use std::path::PathBuf;
 
-use structured_common::{array, unstructured_piece, xml_file, Enc};
-use tetray_io::vtk::{read_legacy_bytes, read_parallel_file, VtkRead};
+use structured_common::{Enc, array, unstructured_piece, xml_file};
+use tetray_io::vtk::{VtkRead, read_legacy_bytes, read_parallel_file};
 use vtk_common::{face_counts, volume6};
 
 /// The 16 points of three unit cubes in a row along x; point `(i, j, k)`

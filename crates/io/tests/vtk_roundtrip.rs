@@ -4,8 +4,8 @@
 mod vtk_common;
 
 use tetray_io::vtk::{
-    read_legacy_bytes, read_vtu_bytes, write_legacy, write_vtu, write_vtu_with, VtuEncoding,
-    VtuOptions,
+    VtuEncoding, VtuOptions, read_legacy_bytes, read_vtu_bytes, write_legacy, write_vtu,
+    write_vtu_with,
 };
 use vtk_common::{assert_bit_exact, sample_mesh};
 

@@ -3,8 +3,8 @@
 
 use std::path::PathBuf;
 
-use tetray_io::vtk::{read_vtu_file, read_vtu_file_with, Linearize, ReadOptions, VtkRead};
-use tetray_io::{load, LoadOptions};
+use tetray_io::vtk::{Linearize, ReadOptions, VtkRead, read_vtu_file, read_vtu_file_with};
+use tetray_io::{LoadOptions, load};
 
 fn sample(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -104,9 +104,11 @@ fn notch_sample_quadratic_hexahedra_and_wedges_load() {
     let field = &read.mesh.fields[0];
     assert_eq!(field.name, "Nodal Displacement_magnitude");
     let max = field.values[..12717].iter().copied().fold(0.0f32, f32::max);
-    assert!(field.values[12717..]
-        .iter()
-        .all(|&v| v.is_finite() && v >= 0.0 && v <= 5.0 * max));
+    assert!(
+        field.values[12717..]
+            .iter()
+            .all(|&v| v.is_finite() && v >= 0.0 && v <= 5.0 * max)
+    );
 
     let loaded = loads("notch_disp.vtu", Linearize::Subdivide);
     assert_eq!(loaded.report.validation.components, 1);

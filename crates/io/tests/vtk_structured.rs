@@ -7,10 +7,10 @@ mod structured_common;
 use std::time::Instant;
 
 use structured_common::{
-    array, extent_attr, real_data, section, warped_points, xml_file, Enc, Piece, TempDir, ENCODINGS,
+    ENCODINGS, Enc, Piece, TempDir, array, extent_attr, real_data, section, warped_points, xml_file,
 };
-use tetray_io::vtk::{read_legacy_bytes, read_vtu_bytes, read_vtu_file, VtkError, VtkRead};
-use tetray_io::{load, LoadOptions};
+use tetray_io::vtk::{VtkError, VtkRead, read_legacy_bytes, read_vtu_bytes, read_vtu_file};
+use tetray_io::{LoadOptions, load};
 
 fn dims(e: [i64; 6]) -> [usize; 3] {
     [0, 1, 2].map(|a| (e[2 * a + 1] - e[2 * a] + 1) as usize)

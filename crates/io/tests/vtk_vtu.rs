@@ -6,10 +6,10 @@ mod vtk_common;
 
 use std::io::Write;
 
-use base64::engine::general_purpose::STANDARD;
 use base64::Engine;
-use flate2::write::ZlibEncoder;
+use base64::engine::general_purpose::STANDARD;
 use flate2::Compression;
+use flate2::write::ZlibEncoder;
 use tetray_io::vtk::read_vtu_bytes;
 
 /// The payloads of a file written by VTK 9's vtkXMLUnstructuredGridWriter

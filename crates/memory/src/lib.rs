@@ -8,4 +8,4 @@ mod prefetch;
 mod recycling;
 
 pub use prefetch::prefetch;
-pub use recycling::{Recycling, LARGE, SLOTS};
+pub use recycling::{LARGE, Recycling, SLOTS};

@@ -11,7 +11,7 @@ pub fn prefetch<T>(value: &T) {
     // SAFETY: a prefetch reads nothing and cannot fault; `value` is a live
     // reference besides. SSE is part of the x86-64 baseline.
     unsafe {
-        use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
+        use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
         _mm_prefetch::<_MM_HINT_T0>((value as *const T).cast());
     }
     #[cfg(not(target_arch = "x86_64"))]

@@ -5,7 +5,7 @@
 //! blocks now and then.
 
 use rayon::prelude::*;
-use tetray_memory::{Recycling, LARGE};
+use tetray_memory::{LARGE, Recycling};
 
 #[global_allocator]
 static ALLOCATOR: Recycling = Recycling::new();
@@ -52,16 +52,18 @@ fn threads_allocate_grow_and_free_across_the_threshold() {
                     let mut v: Vec<u32> = (0..n).map(|i| value(job, round, i)).collect();
                     // Grow past the threshold (realloc), then shrink.
                     v.extend((n..2 * n + 5).map(|i| value(job, round, i)));
-                    assert!(v
-                        .iter()
-                        .enumerate()
-                        .all(|(i, &x)| x == value(job, round, i)));
+                    assert!(
+                        v.iter()
+                            .enumerate()
+                            .all(|(i, &x)| x == value(job, round, i))
+                    );
                     v.truncate(n / 2 + 1);
                     v.shrink_to_fit();
-                    assert!(v
-                        .iter()
-                        .enumerate()
-                        .all(|(i, &x)| x == value(job, round, i)));
+                    assert!(
+                        v.iter()
+                            .enumerate()
+                            .all(|(i, &x)| x == value(job, round, i))
+                    );
                     checked += v.len();
                     // Some blocks outlive the round, freed later.
                     if round % 2 == 0 {
@@ -72,10 +74,11 @@ fn threads_allocate_grow_and_free_across_the_threshold() {
                 }
                 for (k, v) in kept.iter().enumerate() {
                     let round = 2 * k;
-                    assert!(v
-                        .iter()
-                        .enumerate()
-                        .all(|(i, &x)| x == value(job, round, i)));
+                    assert!(
+                        v.iter()
+                            .enumerate()
+                            .all(|(i, &x)| x == value(job, round, i))
+                    );
                 }
                 checked
             })

@@ -21,7 +21,7 @@
 use glam::DVec3;
 use rayon::prelude::*;
 
-use crate::{BoundaryFace, TetMesh, Topology, DEGENERATE_HEIGHT_ULPS};
+use crate::{BoundaryFace, DEGENERATE_HEIGHT_ULPS, TetMesh, Topology};
 
 /// A point found on a boundary face that does not have it as a corner.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

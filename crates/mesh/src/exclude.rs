@@ -21,7 +21,7 @@ use rayon::prelude::*;
 
 use crate::topology::check_tet_count;
 use crate::validate::face_side_conflicts;
-use crate::{tet_shape, MeshError, TetMesh, Topology};
+use crate::{MeshError, TetMesh, Topology, tet_shape};
 
 /// What was left out of the walk, and how much of the mesh that is.
 #[derive(Debug, Clone, Default, PartialEq)]

@@ -3,7 +3,7 @@
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
 
-use crate::{ScalarField, TetMesh, FACE_VERTICES};
+use crate::{FACE_VERTICES, ScalarField, TetMesh};
 
 /// A tetrahedron is degenerate when its smallest height is at most
 /// `DEGENERATE_HEIGHT_ULPS` f32 ulps (`f32::EPSILON` relative) of the

@@ -41,17 +41,17 @@ pub mod synthetic;
 pub use error::MeshError;
 pub use exclude::ExcludedCells;
 pub use geometry::{
-    bounds_f64, centring_origin, tet_shape, tet_volume6, TetShape, DEGENERATE_HEIGHT_ULPS,
+    DEGENERATE_HEIGHT_ULPS, TetShape, bounds_f64, centring_origin, tet_shape, tet_volume6,
 };
 pub use info::{FieldRange, MeshSummary};
-pub use loaded::{finish, prepare, ElementBlock, LoadReport, LoadedMesh, MeshRead};
+pub use loaded::{ElementBlock, LoadReport, LoadedMesh, MeshRead, finish, prepare};
 pub use scale::{
     default_field, default_field_of, mean_chord, mean_tet_chord, paraview_unit_distance,
     tet_chord_sum, value_range,
 };
 pub use search::{first_index, first_position};
-pub use topology::{boundary_faces_of, MAX_TETS};
-pub use validate::{validate, validate_with_topology, ValidationReport};
+pub use topology::{MAX_TETS, boundary_faces_of};
+pub use validate::{ValidationReport, validate, validate_with_topology};
 
 use glam::Vec3;
 

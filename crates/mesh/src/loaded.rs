@@ -8,7 +8,7 @@
 use glam::DVec3;
 
 use crate::cells::{PieceCounts, SubdividedCells};
-use crate::exclude::{exclude_bad_cells, ExcludedCells};
+use crate::exclude::{ExcludedCells, exclude_bad_cells};
 use crate::validate::{check_input, walkable_report};
 use crate::{MeshError, TetMesh, Topology, ValidationReport};
 

@@ -14,7 +14,7 @@ use std::sync::atomic::{AtomicU32, Ordering};
 
 use rayon::prelude::*;
 
-use crate::{BoundaryFace, MeshError, TetMesh, Topology, FACE_VERTICES, NO_NEIGHBOR};
+use crate::{BoundaryFace, FACE_VERTICES, MeshError, NO_NEIGHBOR, TetMesh, Topology};
 
 /// Largest number of tetrahedra: `4 * tet + face` must fit in 32 bits, and
 /// `u32::MAX` is [`NO_NEIGHBOR`].

@@ -19,8 +19,8 @@ use rayon::prelude::*;
 use crate::conform::nonconformity;
 use crate::seams::{coincident_boundary_faces, duplicate_points};
 use crate::{
-    first_index, first_position, tet_shape, BoundaryFace, MeshError, TetMesh, Topology,
-    FACE_VERTICES,
+    BoundaryFace, FACE_VERTICES, MeshError, TetMesh, Topology, first_index, first_position,
+    tet_shape,
 };
 
 /// What validation found that does not stop rendering.

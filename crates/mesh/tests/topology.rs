@@ -3,7 +3,7 @@
 
 use glam::Vec3;
 use tetray_mesh::structured::{boundary_quad_count, structured_tets};
-use tetray_mesh::{MeshError, TetMesh, Topology, FACE_VERTICES, NO_NEIGHBOR};
+use tetray_mesh::{FACE_VERTICES, MeshError, NO_NEIGHBOR, TetMesh, Topology};
 
 /// Two tetrahedra sharing the face (0, 1, 2), apexes on either side.
 fn two_tets() -> TetMesh {

@@ -7,7 +7,7 @@
 
 use glam::Vec3;
 use tetray_mesh::structured::structured_tets;
-use tetray_mesh::{prepare, validate, MeshError, ScalarField, TetMesh};
+use tetray_mesh::{MeshError, ScalarField, TetMesh, prepare, validate};
 
 /// The unit cube split into 5 tets (2 x 2 x 2 points), with a scalar.
 fn cube() -> TetMesh {
@@ -253,16 +253,20 @@ fn t_junction_is_a_warning() {
     // T-junction too), and the two faces below z = 0.
     let tets: Vec<u32> = v.nonconforming_faces.iter().map(|f| f.tet).collect();
     assert_eq!(tets, [0, 0, 1, 2]);
-    assert!(loaded
-        .report
-        .warnings
-        .iter()
-        .any(|w| w.contains("4 faces do not meet")));
-    assert!(loaded
-        .report
-        .changes()
-        .unwrap()
-        .contains("4 non-conforming faces"));
+    assert!(
+        loaded
+            .report
+            .warnings
+            .iter()
+            .any(|w| w.contains("4 faces do not meet"))
+    );
+    assert!(
+        loaded
+            .report
+            .changes()
+            .unwrap()
+            .contains("4 non-conforming faces")
+    );
 }
 
 /// The triangle below split at its centroid: the centroid hangs inside the
@@ -336,11 +340,13 @@ fn seams_are_warnings() {
         assert_eq!(v.duplicate_points, 4);
         assert_eq!(v.seam_faces, coincident_faces);
         assert_eq!(v.components, 2);
-        assert!(loaded
-            .report
-            .warnings
-            .iter()
-            .any(|w| w.contains("4 points repeat")));
+        assert!(
+            loaded
+                .report
+                .warnings
+                .iter()
+                .any(|w| w.contains("4 points repeat"))
+        );
     }
 }
 
@@ -351,9 +357,11 @@ fn unused_points_are_a_warning() {
     mesh.fields[0].values.push(1.0);
     let loaded = prepare(mesh).unwrap();
     assert_eq!(loaded.report.validation.unused_points, 1);
-    assert!(loaded
-        .report
-        .warnings
-        .iter()
-        .any(|w| w.contains("1 points are used by no")));
+    assert!(
+        loaded
+            .report
+            .warnings
+            .iter()
+            .any(|w| w.contains("1 points are used by no"))
+    );
 }

@@ -81,7 +81,7 @@ fn piece_order(
     lo: i32,
     hi: i32,
     view: &View,
-) -> impl Iterator<Item = i32> {
+) -> impl Iterator<Item = i32> + use<> {
     let g = scene.gradients[t as usize];
     let gradient = glam::Vec3::new(g[0], g[1], g[2]);
     let eye = if lo == hi {

@@ -7,13 +7,13 @@ use tetray_core::{Camera, Image};
 use tetray_gpu::{GpuContext, GpuIntegrator, IntegratorData};
 use tetray_scene::Scene;
 
-use crate::draws::{expand, TetIntervals};
+use crate::ProjectError;
+use crate::draws::{TetIntervals, expand};
 use crate::layout::knot_scalars;
 use crate::render::{GpuProjectScene, GpuProjector};
 use crate::scene::ProjectScene;
-use crate::sort::{visibility_order, SortKind};
+use crate::sort::{SortKind, visibility_order};
 use crate::view::View;
-use crate::ProjectError;
 
 /// How to project.
 #[derive(Debug, Clone, Copy, PartialEq)]

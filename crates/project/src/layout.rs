@@ -2,8 +2,8 @@
 //! layout of the WGSL in tests/layout.rs) and the codes shared with it.
 
 use bytemuck::{Pod, Zeroable};
-use tetray_gpu::layout::{IntegratorParams, ViewParams};
 use tetray_gpu::IntegratorData;
+use tetray_gpu::layout::{IntegratorParams, ViewParams};
 
 use crate::view::View;
 

@@ -25,12 +25,12 @@ pub mod sort;
 pub mod twin;
 mod view;
 
-pub use draws::{TetIntervals, NO_CLIP};
+pub use draws::{NO_CLIP, TetIntervals};
 pub use error::ProjectError;
 pub use frame::{
-    plan, samples_adaptively, Plan, ProjectFrame, ProjectOptions, ProjectStats, Projection,
+    Plan, ProjectFrame, ProjectOptions, ProjectStats, Projection, plan, samples_adaptively,
 };
 pub use render::{DrawStats, GpuProjectScene, GpuProjector};
-pub use scene::{ProjectScene, FACE_VERTS};
-pub use sort::{visibility_order, Order, SortKind};
+pub use scene::{FACE_VERTS, ProjectScene};
+pub use sort::{Order, SortKind, visibility_order};
 pub use view::View;

@@ -6,15 +6,15 @@
 use std::time::{Duration, Instant};
 
 use tetray_core::Image;
-use tetray_gpu::readback::{read_buffer, readback_buffer, PassTimestamps};
+use tetray_gpu::readback::{PassTimestamps, read_buffer, readback_buffer};
 use tetray_gpu::{GpuContext, GpuIntegrator};
 use wgpu::util::DeviceExt;
 
+use crate::ProjectError;
 use crate::layout::{Params, STAT_COUNT, STAT_SEGMENTS};
-use crate::scene::{ProjectScene, FACE_VERTS};
+use crate::scene::{FACE_VERTS, ProjectScene};
 use crate::shaders::project_source;
 use crate::view::View;
-use crate::ProjectError;
 
 /// A mesh on the GPU: points and oriented tetrahedra.
 pub struct GpuProjectScene {

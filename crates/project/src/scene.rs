@@ -7,7 +7,7 @@
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
 use tetray_mesh::NO_NEIGHBOR;
-use tetray_scene::{Scene, FINAL_EXIT};
+use tetray_scene::{FINAL_EXIT, Scene};
 
 use crate::ProjectError;
 

@@ -8,9 +8,9 @@ mod support;
 
 use glam::Vec3;
 use support::{camera, convex_box, scene};
-use tetray_mesh::synthetic::{hollow_box, CellSplit};
 use tetray_mesh::NO_NEIGHBOR;
-use tetray_project::{visibility_order, ProjectScene, SortKind, View};
+use tetray_mesh::synthetic::{CellSplit, hollow_box};
+use tetray_project::{ProjectScene, SortKind, View, visibility_order};
 
 fn is_permutation(order: &[u32], n: usize) -> bool {
     let mut seen = vec![false; n];

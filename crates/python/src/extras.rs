@@ -5,7 +5,7 @@ use glam::Vec3;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use tetray_engine::Setup;
-use tetray_integrate::{psi as psi_f64, Method, Model, PsiTable, SegmentParams};
+use tetray_integrate::{Method, Model, PsiTable, SegmentParams, psi as psi_f64};
 
 use crate::{guard, to_py, value_error};
 
@@ -176,7 +176,7 @@ pub fn compare(
         adaptive_tf: true,
     };
     tetray_compare::run(setup, &specs, options, log).map_err(|e| match e {
-        tetray_compare::CompareError::Engine(e) => to_py(e),
+        tetray_compare::CompareError::Engine(e) => to_py(*e),
         other => value_error(error_chain(&other)),
     })
 }

@@ -167,15 +167,19 @@ fn arrays(dict: &Bound<'_, PyDict>, tuples: usize, place: &str) -> PyResult<Vec<
             .extract()
             .map_err(|_| value_error(format!("{place}: array names must be strings")))?;
         let section = format!("{place}[{name:?}]");
-        let (values, components) = if let Ok(a) = value.extract::<PyReadonlyArray1<'_, f64>>() {
-            (a.as_array().to_vec(), 1)
-        } else if let Ok(a) = value.extract::<PyReadonlyArray2<'_, f64>>() {
-            let k = a.shape()[1];
-            (a.as_array().iter().copied().collect(), k)
-        } else {
-            return Err(value_error(format!(
-                "{section}: expected a float64 array of shape (n,) or (n, k)"
-            )));
+        let (values, components) = match value.extract::<PyReadonlyArray1<'_, f64>>() {
+            Ok(a) => (a.as_array().to_vec(), 1),
+            _ => match value.extract::<PyReadonlyArray2<'_, f64>>() {
+                Ok(a) => {
+                    let k = a.shape()[1];
+                    (a.as_array().iter().copied().collect(), k)
+                }
+                _ => {
+                    return Err(value_error(format!(
+                        "{section}: expected a float64 array of shape (n,) or (n, k)"
+                    )));
+                }
+            },
         };
         if components == 0 || values.len() != tuples * components {
             return Err(value_error(format!(

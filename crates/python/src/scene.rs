@@ -89,7 +89,7 @@ impl Scene {
             other => {
                 return Err(value_error(format!(
                     "opacity_mode {other:?}: expected \"exact\" or \"vtk\""
-                )))
+                )));
             }
         };
         let linearize = match linearize {
@@ -98,7 +98,7 @@ impl Scene {
             other => {
                 return Err(value_error(format!(
                     "linearize {other:?}: expected \"subdivide\" or \"corners\""
-                )))
+                )));
             }
         };
         if !(early_termination > 0.0 && early_termination <= 1.0) {
@@ -176,27 +176,31 @@ impl Scene {
             max_steps,
             ..WalkOptions::default()
         };
-        let source = if let Ok(grid) = mesh.cast::<Grid>() {
-            let grid = grid.get();
-            Source::Arrays {
-                grid: Box::new(grid.grid.clone()),
-                name: grid.name.clone(),
-                format: "Python arrays",
-                linearize,
-            }
-        } else if let Ok(path) = mesh.extract::<std::path::PathBuf>() {
-            Source::File {
-                path,
-                options: tetray_io::LoadOptions {
-                    plot3d_q: q,
-                    time_step,
-                    time,
-                    block,
+        let source = match mesh.cast::<Grid>() {
+            Ok(grid) => {
+                let grid = grid.get();
+                Source::Arrays {
+                    grid: Box::new(grid.grid.clone()),
+                    name: grid.name.clone(),
+                    format: "Python arrays",
                     linearize,
-                },
+                }
             }
-        } else {
-            return Err(value_error("mesh must be a path or a tetray._native.Grid"));
+            _ => match mesh.extract::<std::path::PathBuf>() {
+                Ok(path) => Source::File {
+                    path,
+                    options: tetray_io::LoadOptions {
+                        plot3d_q: q,
+                        time_step,
+                        time,
+                        block,
+                        linearize,
+                    },
+                },
+                _ => {
+                    return Err(value_error("mesh must be a path or a tetray._native.Grid"));
+                }
+            },
         };
         let lines = Mutex::new((Vec::new(), Vec::new()));
         let built = py.detach(|| {

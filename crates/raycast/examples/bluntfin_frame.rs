@@ -10,8 +10,8 @@ use tetray_integrate::{
     IntegratorOptions, KernelVisitor, Method, ScalarIntegrator, SegmentKernel, TransferFunction,
     Typed,
 };
-use tetray_io::{load, LoadOptions};
-use tetray_raycast::{render_cpu, RenderOptions, SegmentIntegrator};
+use tetray_io::{LoadOptions, load};
+use tetray_raycast::{RenderOptions, SegmentIntegrator, render_cpu};
 use tetray_scene::Scene;
 
 struct Absorb {

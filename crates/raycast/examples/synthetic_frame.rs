@@ -4,9 +4,9 @@
 use glam::Vec3;
 use tetray_boundary_bvh::BuildPreset;
 use tetray_core::Camera;
-use tetray_mesh::synthetic::{add_field, box_grid, CellSplit, ScalarSpec};
 use tetray_mesh::Topology;
-use tetray_raycast::{render_cpu, RenderOptions, SegmentIntegrator};
+use tetray_mesh::synthetic::{CellSplit, ScalarSpec, add_field, box_grid};
+use tetray_raycast::{RenderOptions, SegmentIntegrator, render_cpu};
 use tetray_scene::Scene;
 
 struct Absorb;

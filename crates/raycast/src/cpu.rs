@@ -8,9 +8,9 @@ use rayon::prelude::*;
 use tetray_core::watertight::RayFrame;
 use tetray_integrate::{KernelVisitor, SampledSegment, ScalarIntegrator, SegmentKernel, Typed};
 
+use tetray_core::WalkCounters;
 use tetray_core::camera::{Camera, CameraError, PixelRays};
 use tetray_core::image::{Image, ImageError};
-use tetray_core::WalkCounters;
 
 use crate::entries::EntryBins;
 use crate::walk::{RayCounters, SegmentIntegrator, WalkLimits, Walker};

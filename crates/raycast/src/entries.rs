@@ -19,7 +19,7 @@ use std::cmp::Ordering;
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
 use tetray_boundary_bvh::EntryHit;
-use tetray_core::watertight::{entry_distance, RayFrame};
+use tetray_core::watertight::{RayFrame, entry_distance};
 
 use tetray_core::camera::PixelRays;
 use tetray_scene::Scene;
@@ -441,13 +441,13 @@ fn widened_edges(sx: [f64; 3], sy: [f64; 3], pad: f64) -> Option<[[f64; 3]; 3]> 
 #[cfg(test)]
 mod tests {
     use glam::Vec3;
-    use tetray_boundary_bvh::{brute_force_first_entry, reentry_start, EntryHit};
-    use tetray_core::watertight::{cross_triangle, RayFrame};
+    use tetray_boundary_bvh::{EntryHit, brute_force_first_entry, reentry_start};
+    use tetray_core::watertight::{RayFrame, cross_triangle};
     use tetray_mesh::Topology;
 
     use super::*;
     use tetray_core::camera::Camera;
-    use tetray_mesh::synthetic::{add_field, box_grid, hollow_box, jittered_box, merge, CellSplit};
+    use tetray_mesh::synthetic::{CellSplit, add_field, box_grid, hollow_box, jittered_box, merge};
 
     fn scene(mut mesh: tetray_mesh::TetMesh) -> Scene {
         add_field(

@@ -9,7 +9,7 @@
 //! anew: the walk is the one that projects every vertex of every cell.
 
 use glam::Vec4;
-use tetray_core::watertight::{crossing_barycentric, edge_sign, Projector, RayPoint};
+use tetray_core::watertight::{Projector, RayPoint, crossing_barycentric, edge_sign};
 use tetray_integrate::fastmath::{clamp_f32, max_f32, min_f32};
 use tetray_mesh::FACE_VERTICES;
 
@@ -225,7 +225,7 @@ pub(crate) fn local_index(verts: [u32; 4], id: u32) -> usize {
 #[cfg(test)]
 mod tests {
     use glam::Vec3;
-    use tetray_core::watertight::{cross_triangle, RayFrame};
+    use tetray_core::watertight::{RayFrame, cross_triangle};
 
     use super::*;
 

@@ -15,7 +15,7 @@ use std::time::Instant;
 use rayon::prelude::*;
 use tetray_integrate::{KernelVisitor, ScalarIntegrator, SegmentKernel, Typed};
 
-use crate::cpu::{in_pool, Frame, RenderError, RenderOptions, RenderStats, BAND_ROWS};
+use crate::cpu::{BAND_ROWS, Frame, RenderError, RenderOptions, RenderStats, in_pool};
 use crate::walk::{SegmentIntegrator, WalkLimits, Walker};
 use tetray_core::camera::Camera;
 use tetray_scene::Scene;
@@ -156,7 +156,7 @@ pub fn render_scalar_fragments(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::cpu::tests::{holed_box_views, Glow};
+    use crate::cpu::tests::{Glow, holed_box_views};
 
     /// The fragments with entries from per-pixel lists are those with BVH
     /// entries bit for bit, on a mesh with a hole (intervals that end and

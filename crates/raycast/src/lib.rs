@@ -15,8 +15,8 @@ mod fragment;
 mod walk;
 
 pub use cpu::{
-    render_cpu, render_cpu_with_progress, render_scalar, render_scalar_with_progress, trace_pixel,
-    wide_cpu, RayTrace, RenderError, RenderOptions, RenderOutput, RenderStats,
+    RayTrace, RenderError, RenderOptions, RenderOutput, RenderStats, render_cpu,
+    render_cpu_with_progress, render_scalar, render_scalar_with_progress, trace_pixel, wide_cpu,
 };
-pub use fragment::{render_fragments, render_scalar_fragments, Fragment, FragmentOutput};
-pub use walk::{packed_exit_table, SegmentIntegrator};
+pub use fragment::{Fragment, FragmentOutput, render_fragments, render_scalar_fragments};
+pub use walk::{SegmentIntegrator, packed_exit_table};

@@ -6,13 +6,13 @@
 use glam::{Vec3, Vec3A};
 use tetray_boundary_bvh::reentry_start;
 use tetray_core::watertight::{Projector, RayFrame};
-use tetray_integrate::fastmath::max_f32;
 use tetray_integrate::SampledSegment;
+use tetray_integrate::fastmath::max_f32;
 use tetray_mesh::FACE_VERTICES;
 
 use crate::entries::EntryList;
-use crate::face::{local_index, Face, Vertex};
-use tetray_scene::{Scene, FINAL_EXIT};
+use crate::face::{Face, Vertex, local_index};
+use tetray_scene::{FINAL_EXIT, Scene};
 
 /// The light of one ray segment, front (nearer the eye) to back.
 ///

@@ -49,7 +49,7 @@ fn reset_to_bounds_matches_vtk() {
     };
     up_z.reset(Vec3::ZERO, Vec3::ONE, 1.0).unwrap();
     assert_eq!(up_z.view_up, Vec3::NEG_X); // (-up.z, up.x, up.y)
-                                           // Degenerate bounds (a point): radius 1, as VTK.
+    // Degenerate bounds (a point): radius 1, as VTK.
     let p = Camera::reset_to_bounds(Vec3::ONE, Vec3::ONE).unwrap();
     assert!(close(
         p.position,

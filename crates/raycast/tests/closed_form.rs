@@ -22,10 +22,10 @@ mod support;
 
 use glam::Vec3;
 use support::compare::{
-    assert_matches, deviation, expected_image, views, write_images, Expected, Worst,
+    Expected, Worst, assert_matches, deviation, expected_image, views, write_images,
 };
 use support::optics::{
-    beer_lambert, linear_field_light, luminance_variation, transfer_function, LinearField, TfF64,
+    LinearField, TfF64, beer_lambert, linear_field_light, luminance_variation, transfer_function,
 };
 use support::{box_chord, box_interval, scene};
 use tetray_core::watertight::RayFrame;
@@ -34,9 +34,9 @@ use tetray_integrate::{
     IntegratorOptions, Method, OpacityMode, ScalarIntegrator, TransferFunction,
 };
 use tetray_mesh::synthetic::{
-    add_field, box_grid, hollow_box, jittered_box, two_boxes, CellSplit, ScalarSpec,
+    CellSplit, ScalarSpec, add_field, box_grid, hollow_box, jittered_box, two_boxes,
 };
-use tetray_raycast::{render_scalar, RenderOptions, RenderOutput, RenderStats};
+use tetray_raycast::{RenderOptions, RenderOutput, RenderStats, render_scalar};
 use tetray_scene::Scene;
 
 /// Pixels per side of the oblique views.

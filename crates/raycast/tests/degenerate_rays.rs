@@ -8,10 +8,10 @@
 mod support;
 
 use glam::{DVec3, Vec3};
-use support::{box_chord, box_interval, linear_integral, scene, BeerLambert, LengthAndScalar};
+use support::{BeerLambert, LengthAndScalar, box_chord, box_interval, linear_integral, scene};
 use tetray_core::Camera;
-use tetray_mesh::synthetic::{add_field, box_grid, CellSplit, ScalarSpec};
-use tetray_raycast::{render_cpu, RenderOptions};
+use tetray_mesh::synthetic::{CellSplit, ScalarSpec, add_field, box_grid};
+use tetray_raycast::{RenderOptions, render_cpu};
 
 /// 15 pixels of 0.25 world units: pixel centres at 0.25, 0.5, .., 3.75 on
 /// the grid [0, 4]^3 of unit cells, i.e. on vertices, edges, cell faces and

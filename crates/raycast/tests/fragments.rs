@@ -8,9 +8,9 @@ use glam::Vec3;
 use tetray_boundary_bvh::BuildPreset;
 use tetray_core::Camera;
 use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunction};
-use tetray_mesh::synthetic::{add_field, box_grid, hollow_box, CellSplit, ScalarSpec};
+use tetray_mesh::synthetic::{CellSplit, ScalarSpec, add_field, box_grid, hollow_box};
 use tetray_mesh::{TetMesh, Topology};
-use tetray_raycast::{render_scalar, render_scalar_fragments, Fragment, RenderOptions};
+use tetray_raycast::{Fragment, RenderOptions, render_scalar, render_scalar_fragments};
 use tetray_scene::Scene;
 
 fn scene(mut mesh: TetMesh) -> Scene {

@@ -20,15 +20,15 @@ use std::path::{Path, PathBuf};
 
 use glam::{DVec3, Vec3};
 use support::box_chord;
-use support::compare::{assert_matches, expected_image, views, Expected, Worst};
+use support::compare::{Expected, Worst, assert_matches, expected_image, views};
 use support::optics::{beer_lambert, transfer_function};
 use tetray_boundary_bvh::BuildPreset;
-use tetray_core::{relative_to_origin, Camera, Image};
+use tetray_core::{Camera, Image, relative_to_origin};
 use tetray_integrate::{IntegratorOptions, Method, OpacityMode, ScalarIntegrator};
-use tetray_io::{load, LoadOptions};
-use tetray_mesh::synthetic::{jittered_box, CellSplit, ScalarSpec};
+use tetray_io::{LoadOptions, load};
+use tetray_mesh::synthetic::{CellSplit, ScalarSpec, jittered_box};
 use tetray_mesh::{LoadedMesh, MeshSummary};
-use tetray_raycast::{render_scalar, RenderOptions};
+use tetray_raycast::{RenderOptions, render_scalar};
 use tetray_scene::Scene;
 
 const SIZE: u32 = 40;
@@ -216,11 +216,13 @@ fn far_from_the_origin_renders_as_at_the_origin() {
             "{:?}",
             moved.origin()
         );
-        assert!(moved
-            .report
-            .changes()
-            .unwrap()
-            .contains("relative to the origin"));
+        assert!(
+            moved
+                .report
+                .changes()
+                .unwrap()
+                .contains("relative to the origin")
+        );
         assert!(moved.report.excluded.is_empty());
         assert_eq!(moved.mesh.tets.len(), base.mesh.tets.len());
         let origin = moved.origin();
@@ -314,11 +316,13 @@ fn a_tangled_cell_is_left_out_without_holes_or_streaks() {
         "{}",
         x.volume_share
     );
-    assert!(tangled
-        .report
-        .changes()
-        .unwrap()
-        .contains("1 cells left out (1 tangled"));
+    assert!(
+        tangled
+            .report
+            .changes()
+            .unwrap()
+            .contains("1 cells left out (1 tangled")
+    );
     let reference = load_hexes(&points, &without, &s, "without.vtk");
     assert!(reference.report.excluded.is_empty());
 

@@ -24,14 +24,14 @@ mod support;
 use std::collections::HashMap;
 
 use glam::Vec3;
-use support::compare::{assert_matches, expected_image, views, Worst};
-use support::optics::{beer_lambert, linear_field_light, transfer_function, LinearField, TfF64};
+use support::compare::{Worst, assert_matches, expected_image, views};
+use support::optics::{LinearField, TfF64, beer_lambert, linear_field_light, transfer_function};
 use support::{box_chord, box_interval};
 use tetray_boundary_bvh::BuildPreset;
 use tetray_integrate::{IntegratorOptions, Method, OpacityMode, ScalarIntegrator};
-use tetray_mesh::synthetic::{add_field, box_grid, merge, CellSplit, ScalarSpec};
-use tetray_mesh::{prepare, TetMesh};
-use tetray_raycast::{render_scalar, RenderOptions};
+use tetray_mesh::synthetic::{CellSplit, ScalarSpec, add_field, box_grid, merge};
+use tetray_mesh::{TetMesh, prepare};
+use tetray_raycast::{RenderOptions, render_scalar};
 use tetray_scene::Scene;
 
 const SIZE: u32 = 40;

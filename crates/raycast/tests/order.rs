@@ -8,10 +8,10 @@ use glam::Vec3;
 use tetray_boundary_bvh::BuildPreset;
 use tetray_core::Camera;
 use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunction};
-use tetray_io::{load, LoadOptions};
-use tetray_mesh::synthetic::{add_field, hollow_box, CellSplit, ScalarSpec};
+use tetray_io::{LoadOptions, load};
+use tetray_mesh::synthetic::{CellSplit, ScalarSpec, add_field, hollow_box};
 use tetray_mesh::{TetMesh, Topology};
-use tetray_raycast::{render_scalar, RenderOptions};
+use tetray_raycast::{RenderOptions, render_scalar};
 use tetray_scene::{CellOrder, Scene};
 
 /// Largest per-pixel difference allowed between the two orders (the walk

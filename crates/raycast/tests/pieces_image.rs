@@ -20,10 +20,10 @@ use glam::{DVec3, Vec3};
 use tetray_boundary_bvh::BuildPreset;
 use tetray_core::{Camera, Image};
 use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator, TransferFunction};
-use tetray_io::vtk::{read_vtu_file, write_vtu, VtuEncoding};
-use tetray_io::{load, LoadOptions};
+use tetray_io::vtk::{VtuEncoding, read_vtu_file, write_vtu};
+use tetray_io::{LoadOptions, load};
 use tetray_mesh::{ScalarField, TetMesh};
-use tetray_raycast::{render_scalar, RenderOptions};
+use tetray_raycast::{RenderOptions, render_scalar};
 use tetray_scene::Scene;
 
 fn data() -> PathBuf {

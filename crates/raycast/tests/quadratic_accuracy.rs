@@ -17,14 +17,14 @@ use std::fmt::Write;
 
 use glam::{DVec3, Vec3};
 use support::box_interval;
-use support::compare::{deviation, expected_image, views, Expected};
+use support::compare::{Expected, deviation, expected_image, views};
 use support::optics::transfer_function;
 use tetray_boundary_bvh::BuildPreset;
-use tetray_core::watertight::RayFrame;
 use tetray_core::Image;
-use tetray_integrate::{reference, IntegratorOptions, Method, OpacityMode, ScalarIntegrator};
-use tetray_io::vtk::{read_legacy_bytes_with, Linearize, ReadOptions};
-use tetray_raycast::{render_scalar, RenderOptions};
+use tetray_core::watertight::RayFrame;
+use tetray_integrate::{IntegratorOptions, Method, OpacityMode, ScalarIntegrator, reference};
+use tetray_io::vtk::{Linearize, ReadOptions, read_legacy_bytes_with};
+use tetray_raycast::{RenderOptions, render_scalar};
 use tetray_scene::Scene;
 
 /// Cubes per side of the unit box; each cut into 6 quadratic tetrahedra.

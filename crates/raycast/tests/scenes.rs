@@ -4,7 +4,7 @@
 
 use glam::{DVec3, Vec3};
 use tetray_mesh::synthetic::{
-    add_field, box_grid, hollow_box, jittered_box, two_boxes, BuildError, CellSplit, ScalarSpec,
+    BuildError, CellSplit, ScalarSpec, add_field, box_grid, hollow_box, jittered_box, two_boxes,
 };
 use tetray_mesh::{TetMesh, Topology};
 
@@ -91,15 +91,17 @@ fn hollow_box_and_two_boxes_have_the_expected_boundaries() {
         topo.boundary_faces.len(),
         box_boundary_faces([4, 4, 4]) + box_boundary_faces([2, 2, 2])
     );
-    assert!(hollow_box(
-        Vec3::ZERO,
-        Vec3::ONE,
-        [2, 2, 2],
-        [1, 1, 1],
-        [1, 2, 2],
-        CellSplit::Six
-    )
-    .is_err());
+    assert!(
+        hollow_box(
+            Vec3::ZERO,
+            Vec3::ONE,
+            [2, 2, 2],
+            [1, 1, 1],
+            [1, 2, 2],
+            CellSplit::Six
+        )
+        .is_err()
+    );
 
     let mesh = two_boxes(
         (Vec3::ZERO, Vec3::ONE, [1, 1, 1]),

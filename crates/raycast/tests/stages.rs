@@ -10,9 +10,9 @@ use tetray_integrate::{
     ColorPoint, IntegratorOptions, KernelVisitor, Method, OpacityPoint, ScalarIntegrator,
     SegmentKernel, TransferFunction, Typed,
 };
-use tetray_mesh::synthetic::{add_field, hollow_box, CellSplit, ScalarSpec};
 use tetray_mesh::Topology;
-use tetray_raycast::{render_scalar, trace_pixel, RenderOptions};
+use tetray_mesh::synthetic::{CellSplit, ScalarSpec, add_field, hollow_box};
+use tetray_raycast::{RenderOptions, render_scalar, trace_pixel};
 use tetray_scene::Scene;
 
 /// One pixel traced alone with the integrator's method fixed in its type,

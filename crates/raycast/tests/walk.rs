@@ -5,12 +5,12 @@
 mod support;
 
 use glam::Vec3;
-use support::{box_chord, box_interval, linear_integral, scene, LengthAndScalar};
+use support::{LengthAndScalar, box_chord, box_interval, linear_integral, scene};
 use tetray_core::Camera;
 use tetray_mesh::synthetic::{
-    add_field, box_grid, hollow_box, jittered_box, two_boxes, CellSplit, ScalarSpec,
+    CellSplit, ScalarSpec, add_field, box_grid, hollow_box, jittered_box, two_boxes,
 };
-use tetray_raycast::{render_cpu, RenderOptions, RenderStats};
+use tetray_raycast::{RenderOptions, RenderStats, render_cpu};
 use tetray_scene::Scene;
 
 const SIZE: u32 = 24;

@@ -11,4 +11,4 @@ pub mod order;
 mod scene;
 
 pub use order::Reorder;
-pub use scene::{CellOrder, Scene, SceneError, WalkTet, FINAL_EXIT};
+pub use scene::{CellOrder, FINAL_EXIT, Scene, SceneError, WalkTet};

@@ -11,7 +11,7 @@
 use rayon::prelude::*;
 use rdst::RadixSort;
 use std::sync::atomic::{AtomicU32, Ordering};
-use tetray_mesh::{boundary_faces_of, TetMesh, Topology, NO_NEIGHBOR};
+use tetray_mesh::{NO_NEIGHBOR, TetMesh, Topology, boundary_faces_of};
 
 /// Bits per axis of the Morton code (3 x 21 = 63 bits).
 const BITS: u32 = 21;

@@ -6,9 +6,9 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use glam::Vec3;
 use rayon::prelude::*;
 use tetray_boundary_bvh::{BoundaryBvh, BuildPreset, BvhError};
-use tetray_mesh::{first_position, LoadedMesh, TetMesh, Topology, FACE_VERTICES, NO_NEIGHBOR};
+use tetray_mesh::{FACE_VERTICES, LoadedMesh, NO_NEIGHBOR, TetMesh, Topology, first_position};
 
-use crate::order::{morton_reorder, Reorder};
+use crate::order::{Reorder, morton_reorder};
 
 /// Why a [`Scene`] could not be made from a mesh.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -39,7 +39,9 @@ pub enum SceneError {
     TopologyMismatch { topology: usize, mesh: usize },
     #[error("the mesh has {0} tetrahedra; the walk indexes at most 2^30 - 1")]
     TooManyTets(usize),
-    #[error("face {face} of tetrahedron {tet} has neighbour {neighbor}, which does not share its three points")]
+    #[error(
+        "face {face} of tetrahedron {tet} has neighbour {neighbor}, which does not share its three points"
+    )]
     BadNeighbor {
         tet: usize,
         face: usize,
@@ -335,7 +337,7 @@ fn walk_tets(
             walk_record(mesh, t).unwrap_or_else(|_| {
                 bad.store(true, Ordering::Relaxed);
                 WalkTet {
-                    verts: *t.1 .0,
+                    verts: *t.1.0,
                     next: [NO_NEIGHBOR; 4],
                 }
             })
@@ -467,7 +469,7 @@ fn check_boundary_faces(mesh: &TetMesh, topology: &Topology) -> Result<(), Scene
 #[cfg(test)]
 mod tests {
     use super::*;
-    use tetray_mesh::synthetic::{add_field, jittered_box, CellSplit, ScalarSpec};
+    use tetray_mesh::synthetic::{CellSplit, ScalarSpec, add_field, jittered_box};
 
     /// Switching the active field gives the scene a fresh build would.
     #[test]

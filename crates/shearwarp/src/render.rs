@@ -17,7 +17,7 @@ use rayon::prelude::*;
 use tetray_core::{Camera, Image};
 
 use crate::classify::SlabLight;
-use crate::stack::{axes_of, Stack};
+use crate::stack::{Stack, axes_of};
 use crate::{Classification, ShearWarp, ShearWarpError};
 
 /// What to render and how.

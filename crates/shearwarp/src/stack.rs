@@ -4,8 +4,8 @@
 
 use rayon::prelude::*;
 
-use crate::classify::Classifier;
 use crate::RegularGrid;
+use crate::classify::Classifier;
 
 /// A run of cells `start..end` of one row sharing `class` (0: may be
 /// visible).

@@ -25,9 +25,9 @@ use tetray_integrate::{
 use crate::cells;
 use crate::gpu_segments::{GpuSegment, SegmentKernel};
 use crate::output::{Csv, OutputDir};
-use crate::svg::heat::{heat_figure, ColourScale, HeatPanel};
-use crate::svg::line::{line_figure, LinePanel, Series};
 use crate::svg::Axis;
+use crate::svg::heat::{ColourScale, HeatPanel, heat_figure};
+use crate::svg::line::{LinePanel, Series, line_figure};
 use crate::{Check, StudyError};
 
 /// Sizes of the study.
@@ -498,14 +498,14 @@ fn checks(sweeps: &[SweepError]) -> Vec<Check> {
                 find("opacity", d, device, Method::LinAvgOpacity),
                 find("opacity", d, device, Method::AverageOpacity),
             );
-            if let (Some(lin), Some(lin_avg), Some(avg)) = opacity {
-                if d >= 0.1 {
-                    checks.push(Check::new(
-                        format!("{tag}: lin-opacity below lin-avg-opacity and average-opacity"),
-                        lin < lin_avg && lin < avg,
-                        format!("{lin:.3e} vs {lin_avg:.3e}, {avg:.3e}"),
-                    ));
-                }
+            if let (Some(lin), Some(lin_avg), Some(avg)) = opacity
+                && d >= 0.1
+            {
+                checks.push(Check::new(
+                    format!("{tag}: lin-opacity below lin-avg-opacity and average-opacity"),
+                    lin < lin_avg && lin < avg,
+                    format!("{lin:.3e} vs {lin_avg:.3e}, {avg:.3e}"),
+                ));
             }
         }
         if let Some(exact) = find("attenuation", d, Device::Cpu, Method::Exact) {

@@ -5,10 +5,10 @@
 //! the kernel the GPU ray caster runs.
 
 use bytemuck::{Pod, Zeroable};
+use tetray_gpu::GpuContext;
 use tetray_gpu::layout::{IntegratorParams, Params};
 use tetray_gpu::readback::{read_buffer, readback_buffer};
-use tetray_gpu::shaders::{module, COMMON, INTEGRATE};
-use tetray_gpu::GpuContext;
+use tetray_gpu::shaders::{COMMON, INTEGRATE, module};
 use tetray_integrate::{GammaSpacing, Method, PsiTable};
 use wgpu::util::DeviceExt;
 

@@ -153,7 +153,7 @@ impl From<String> for Cell {
 /// `[a.into(), b.into(), ...]`: a CSV row of mixed cells.
 #[macro_export]
 macro_rules! cells {
-    ($($value:expr),* $(,)?) => {
+    ($($value:expr_2021),* $(,)?) => {
         [$($crate::output::Cell::from($value)),*]
     };
 }

@@ -16,8 +16,8 @@ use tetray_integrate::{GammaSpacing, PsiTable};
 
 use crate::cells;
 use crate::output::{Csv, OutputDir};
-use crate::svg::heat::{heat_figure, ColourScale, HeatPanel};
-use crate::svg::line::{line_figure, LinePanel, Series};
+use crate::svg::heat::{ColourScale, HeatPanel, heat_figure};
+use crate::svg::line::{LinePanel, Series, line_figure};
 use crate::svg::{Axis, Scale};
 use crate::{Check, StudyError};
 
@@ -369,14 +369,15 @@ fn checks(tables: &[TableError]) -> Vec<Check> {
                 format!("{:.3e} vs {nearest:.3e}", t.max_error),
             ));
         }
-        if t.spacing == "quadratic" && t.size >= 64 {
-            if let Some(uniform) = find("uniform", Lookup::Bilinear, t.size) {
-                checks.push(Check::new(
-                    format!("{}: quadratic nodes below uniform (bilinear)", t.size),
-                    t.max_error < uniform,
-                    format!("{:.3e} vs {uniform:.3e}", t.max_error),
-                ));
-            }
+        if t.spacing == "quadratic"
+            && t.size >= 64
+            && let Some(uniform) = find("uniform", Lookup::Bilinear, t.size)
+        {
+            checks.push(Check::new(
+                format!("{}: quadratic nodes below uniform (bilinear)", t.size),
+                t.max_error < uniform,
+                format!("{:.3e} vs {uniform:.3e}", t.max_error),
+            ));
         }
     }
     checks

@@ -20,13 +20,13 @@ use tetray_core::{Camera, Image};
 use tetray_integrate::{
     ColorPoint, IntegratorOptions, Method, OpacityPoint, ScalarIntegrator, TransferFunction,
 };
-use tetray_raycast::{render_scalar, RenderOptions};
+use tetray_raycast::{RenderOptions, render_scalar};
 use tetray_scene::Scene;
 use tetray_shearwarp::{Classification, ClassifyOptions, RegularGrid, ShearWarp, ShearWarpOptions};
 
 use crate::output::{Cell, Csv, OutputDir};
-use crate::svg::line::{line_figure, LinePanel, Series};
 use crate::svg::Axis;
+use crate::svg::line::{LinePanel, Series, line_figure};
 use crate::{Check, StudyError};
 
 /// Sizes of the study.
@@ -317,11 +317,7 @@ fn write(
             .collect();
         let label = format!("{} {}", c.name(), if max { "max" } else { "mean" });
         let s = Series::new(label, colour, points).with_markers();
-        if max {
-            s.dashed()
-        } else {
-            s
-        }
+        if max { s.dashed() } else { s }
     };
     let panel = LinePanel {
         title: format!(

@@ -20,15 +20,15 @@ use tetray_core::Camera;
 use tetray_gpu::{GpuContext, GpuIntegrator, GpuRaycaster, GpuRenderOptions, GpuScene};
 use tetray_integrate::reference::{attenuation_segment, opacity_segment};
 use tetray_integrate::{IntegratorOptions, Material, Method, Model, ScalarIntegrator, TfKnots};
-use tetray_mesh::synthetic::{add_field, box_grid, CellSplit, ScalarSpec};
 use tetray_mesh::Topology;
-use tetray_raycast::{render_scalar, RenderOptions};
+use tetray_mesh::synthetic::{CellSplit, ScalarSpec, add_field, box_grid};
+use tetray_raycast::{RenderOptions, render_scalar};
 use tetray_scene::Scene;
 
 use crate::cells;
 use crate::output::{Csv, OutputDir};
-use crate::svg::line::{line_figure, LinePanel, Series};
-use crate::svg::{fit_range, Axis};
+use crate::svg::line::{LinePanel, Series, line_figure};
+use crate::svg::{Axis, fit_range};
 use crate::{Check, StudyError};
 
 /// Sizes of the study.

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 
 use tetray_study::accuracy::{self, AccuracyOptions, Device};
 use tetray_study::psi_study::{self, Lookup, PsiOptions};
-use tetray_study::{failed, OutputDir};
+use tetray_study::{OutputDir, failed};
 
 fn out_dir(name: &str) -> OutputDir {
     let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
@@ -323,11 +323,13 @@ fn speed_study_small() {
     assert!(summary.notes.iter().any(|n| n.contains("tetray-project")));
     if summary.gpu_adapter.is_some() {
         // The projection integrates segments of the same mesh.
-        assert!(summary
-            .table
-            .iter()
-            .filter(|r| r.renderer == "projection")
-            .all(|r| r.segments_per_frame > 0.0));
+        assert!(
+            summary
+                .table
+                .iter()
+                .filter(|r| r.renderer == "projection")
+                .all(|r| r.segments_per_frame > 0.0)
+        );
     }
     // The datasets as the dissertation counts them (table 6.1, our split).
     let tets = |name: &str| summary.table.iter().find(|r| r.mesh == name).unwrap().tets;

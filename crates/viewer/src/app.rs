@@ -15,7 +15,7 @@ use tetray_shearwarp::ShearWarp;
 use crate::cpu::{CpuJob, CpuWork, CpuWorker};
 use crate::engine::{FrameKey, GpuRenderer, Look, Phase, Progressive};
 use crate::methods::{RendererChoice, Settings, ViewIntegrator};
-use crate::present::{read_texture, Display, DisplayTexture};
+use crate::present::{Display, DisplayTexture, read_texture};
 use crate::projection::ProjectRenderer;
 use crate::tf_editor::TfEditor;
 
@@ -370,10 +370,10 @@ impl ViewerApp {
     /// the run-length encodings are built by the first frame, on the
     /// worker).
     fn shear_warp_views(&mut self) -> anyhow::Result<Vec<Arc<ShearWarp>>> {
-        if let Some((generation, views)) = &self.shear_warp {
-            if *generation == self.generation {
-                return Ok(views.clone());
-            }
+        if let Some((generation, views)) = &self.shear_warp
+            && *generation == self.generation
+        {
+            return Ok(views.clone());
         }
         let tf = self.tf_editor.transfer_function()?;
         let views = self

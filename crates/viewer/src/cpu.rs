@@ -3,16 +3,16 @@
 //! frame at a time, so the window stays live; a request made while one
 //! runs waits for it and replaces any request still waiting.
 
-use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::mpsc::{channel, Receiver};
 use std::sync::Arc;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::mpsc::{Receiver, channel};
 use std::thread::JoinHandle;
 use std::time::Duration;
 
 use tetray_core::Image;
 use tetray_core::WalkCounters;
 use tetray_integrate::ScalarIntegrator;
-use tetray_raycast::{render_scalar_with_progress, RenderOptions};
+use tetray_raycast::{RenderOptions, render_scalar_with_progress};
 use tetray_scene::Scene;
 use tetray_shearwarp::{Classification, ShearWarp, ShearWarpOptions};
 

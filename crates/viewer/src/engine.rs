@@ -10,8 +10,8 @@ use anyhow::Context;
 use tetray_core::WalkCounters;
 use tetray_core::{Camera, Image};
 use tetray_gpu::{
-    walk_counters, FrameJob, GpuContext, GpuIntegrator, GpuRaycaster, GpuRenderOptions, GpuScene,
-    GpuTarget,
+    FrameJob, GpuContext, GpuIntegrator, GpuRaycaster, GpuRenderOptions, GpuScene, GpuTarget,
+    walk_counters,
 };
 use tetray_scene::Scene;
 

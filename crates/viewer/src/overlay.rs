@@ -4,7 +4,7 @@
 use egui::{Align2, Color32, FontId, Pos2, Rect, Sense, Shape, Stroke, Vec2};
 
 use crate::app::ViewerApp;
-use crate::present::{heat, Display};
+use crate::present::{Display, heat};
 
 pub fn draw(app: &mut ViewerApp, ui: &mut egui::Ui, rect: Rect) {
     let comparing = app.views.len() > 1;
@@ -30,10 +30,10 @@ fn divider(app: &mut ViewerApp, ui: &mut egui::Ui, rect: Rect) {
     let response = ui.interact(handle, ui.scope_id().with("divider"), Sense::drag());
     response
         .widget_info(|| egui::WidgetInfo::slider(true, f64::from(app.settings.divider), "divider"));
-    if response.dragged() {
-        if let Some(pos) = response.interact_pointer_pos() {
-            app.settings.divider = ((pos.x - rect.left()) / rect.width()).clamp(0.0, 1.0);
-        }
+    if response.dragged()
+        && let Some(pos) = response.interact_pointer_pos()
+    {
+        app.settings.divider = ((pos.x - rect.left()) / rect.width()).clamp(0.0, 1.0);
     }
     let painter = ui.painter_at(rect);
     let width = if response.hovered() || response.dragged() {

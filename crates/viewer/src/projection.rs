@@ -11,7 +11,7 @@ use tetray_core::WalkCounters;
 use tetray_gpu::{GpuContext, GpuIntegrator};
 use tetray_project::layout::knot_scalars;
 use tetray_project::{
-    plan, GpuProjectScene, GpuProjector, ProjectScene, SortKind, TetIntervals, View,
+    GpuProjectScene, GpuProjector, ProjectScene, SortKind, TetIntervals, View, plan,
 };
 use tetray_scene::Scene;
 

@@ -8,7 +8,7 @@ use anyhow::bail;
 use tetray_core::Image;
 
 use crate::engine::{FrameKey, Look};
-use crate::present::{present_image, Display, PresentParams, Sources};
+use crate::present::{Display, PresentParams, Sources, present_image};
 
 pub fn save(
     path: &Path,

@@ -115,11 +115,7 @@ impl TfEditor {
             .map(|p| p.scalar)
             .chain(self.opacity.iter().map(|p| p.scalar));
         let (lo, hi) = points.fold(self.range, |(lo, hi), s| (lo.min(s), hi.max(s)));
-        if hi > lo {
-            (lo, hi)
-        } else {
-            (lo, lo + 1.0)
-        }
+        if hi > lo { (lo, hi) } else { (lo, lo + 1.0) }
     }
 
     /// The editor; returns whether the function changed.
@@ -228,12 +224,12 @@ impl TfEditor {
             response.widget_info(|| {
                 egui::WidgetInfo::labeled(egui::Role::Slider, true, format!("opacity point {i}"))
             });
-            if response.dragged() {
-                if let Some(pos) = response.interact_pointer_pos() {
-                    let scalar = axis.0 + (pos.x - rect.left()) / rect.width() * (axis.1 - axis.0);
-                    let alpha = (rect.bottom() - pos.y) / rect.height();
-                    changed |= move_opacity_point(&mut self.opacity, i, scalar, alpha);
-                }
+            if response.dragged()
+                && let Some(pos) = response.interact_pointer_pos()
+            {
+                let scalar = axis.0 + (pos.x - rect.left()) / rect.width() * (axis.1 - axis.0);
+                let alpha = (rect.bottom() - pos.y) / rect.height();
+                changed |= move_opacity_point(&mut self.opacity, i, scalar, alpha);
             }
             if response.secondary_clicked() {
                 remove = Some(i);
@@ -249,13 +245,13 @@ impl TfEditor {
         if let Some(i) = remove {
             changed |= remove_point(&mut self.opacity, i);
         }
-        if background.double_clicked() {
-            if let Some(pos) = background.interact_pointer_pos() {
-                let scalar = axis.0 + (pos.x - rect.left()) / rect.width() * (axis.1 - axis.0);
-                let alpha = ((rect.bottom() - pos.y) / rect.height()).clamp(0.0, 1.0);
-                insert_opacity_point(&mut self.opacity, scalar, alpha);
-                changed = true;
-            }
+        if background.double_clicked()
+            && let Some(pos) = background.interact_pointer_pos()
+        {
+            let scalar = axis.0 + (pos.x - rect.left()) / rect.width() * (axis.1 - axis.0);
+            let alpha = ((rect.bottom() - pos.y) / rect.height()).clamp(0.0, 1.0);
+            insert_opacity_point(&mut self.opacity, scalar, alpha);
+            changed = true;
         }
         changed
     }
@@ -308,11 +304,11 @@ impl TfEditor {
             response.widget_info(|| {
                 egui::WidgetInfo::labeled(egui::Role::Slider, true, format!("colour stop {i}"))
             });
-            if response.dragged() {
-                if let Some(pos) = response.interact_pointer_pos() {
-                    let scalar = axis.0 + (pos.x - rect.left()) / rect.width() * (axis.1 - axis.0);
-                    changed |= move_color_stop(&mut self.color, i, scalar);
-                }
+            if response.dragged()
+                && let Some(pos) = response.interact_pointer_pos()
+            {
+                let scalar = axis.0 + (pos.x - rect.left()) / rect.width() * (axis.1 - axis.0);
+                changed |= move_color_stop(&mut self.color, i, scalar);
             }
             if response.clicked() {
                 self.selected_stop = Some(i);
@@ -336,22 +332,22 @@ impl TfEditor {
                 Stroke::new(if selected { 2.0 } else { 1.0 }, outline),
             ));
         }
-        if let Some(i) = remove {
-            if remove_point(&mut self.color, i) {
-                self.selected_stop = None;
-                changed = true;
-            }
+        if let Some(i) = remove
+            && remove_point(&mut self.color, i)
+        {
+            self.selected_stop = None;
+            changed = true;
         }
-        if ramp.double_clicked() {
-            if let (Some(pos), Some(tf)) = (ramp.interact_pointer_pos(), tf) {
-                let scalar = axis.0 + (pos.x - rect.left()) / rect.width() * (axis.1 - axis.0);
-                self.selected_stop = Some(insert_color_stop(
-                    &mut self.color,
-                    scalar,
-                    tf.color_at(scalar),
-                ));
-                changed = true;
-            }
+        if ramp.double_clicked()
+            && let (Some(pos), Some(tf)) = (ramp.interact_pointer_pos(), tf)
+        {
+            let scalar = axis.0 + (pos.x - rect.left()) / rect.width() * (axis.1 - axis.0);
+            self.selected_stop = Some(insert_color_stop(
+                &mut self.color,
+                scalar,
+                tf.color_at(scalar),
+            ));
+            changed = true;
         }
         changed
     }
@@ -487,14 +483,16 @@ mod tests {
         assert_eq!((points[1].scalar, points[1].alpha), (0.0, 0.0));
         assert!(!move_opacity_point(&mut points, 1, f32::NAN, f32::NAN));
         // Two points may share a scalar (a step), as TransferFunction allows.
-        assert!(TransferFunction::new(
-            vec![ColorPoint {
-                scalar: 0.0,
-                rgb: Vec3::ONE
-            }],
-            points.clone()
-        )
-        .is_ok());
+        assert!(
+            TransferFunction::new(
+                vec![ColorPoint {
+                    scalar: 0.0,
+                    rgb: Vec3::ONE
+                }],
+                points.clone()
+            )
+            .is_ok()
+        );
     }
 
     #[test]

@@ -10,12 +10,12 @@
 mod support;
 
 use egui::{Event, Modifiers, PointerButton, Pos2, Vec2};
-use egui_kittest::kittest::Queryable;
 use egui_kittest::SnapshotOptions;
+use egui_kittest::kittest::Queryable;
 use glam::Vec3;
 use support::{difference, displayed, gpu_or_skip, harness, options, run_until_idle};
 use tetray_integrate::{IntegratorOptions, Method, ScalarIntegrator};
-use tetray_raycast::{render_scalar, RenderOptions};
+use tetray_raycast::{RenderOptions, render_scalar};
 
 /// The display at startup: compared with the stored snapshot, and with the
 /// CPU reference ray caster for the same camera.
@@ -70,7 +70,7 @@ fn starts_on_the_default_dataset_and_matches_the_snapshot() {
     )
     .expect("integrator");
     let cpu = render_scalar(
-        &scene,
+        scene,
         &camera,
         &integrator,
         &RenderOptions {

@@ -9,8 +9,8 @@ use std::mem::{offset_of, size_of};
 use glam::Vec3;
 use tetray_gpu::{GpuContext, GpuTarget};
 use tetray_viewer::present::{
-    present_image, read_texture, Display, DisplayTexture, PresentParams, Presenter, Sources,
-    PRESENT_WGSL,
+    Display, DisplayTexture, PRESENT_WGSL, PresentParams, Presenter, Sources, present_image,
+    read_texture,
 };
 
 #[test]

@@ -6,8 +6,8 @@ pub mod rays;
 
 use std::collections::HashMap;
 
-use tetray_core::watertight::{cross_triangle, Crossing, RayFrame};
-use tetray_mesh::{BoundaryFace, TetMesh, Topology, FACE_VERTICES, NO_NEIGHBOR};
+use tetray_core::watertight::{Crossing, RayFrame, cross_triangle};
+use tetray_mesh::{BoundaryFace, FACE_VERTICES, NO_NEIGHBOR, TetMesh, Topology};
 
 /// Face adjacency by matching sorted vertex triples. Stands in for
 /// `tetray_mesh::Topology::build` (written in parallel) and doubles as an

@@ -4,8 +4,8 @@ use glam::Vec3;
 use tetray_core::watertight::RayFrame;
 use tetray_mesh::TetMesh;
 
-use super::meshes::Grid;
 use super::Rng;
+use super::meshes::Grid;
 
 /// A ray with the query range to ask about.
 #[derive(Debug, Clone, Copy)]

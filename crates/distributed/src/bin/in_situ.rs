@@ -18,12 +18,12 @@ use std::process::ExitCode;
 use glam::{DVec3, Vec3};
 use tetray_distributed::mpi::traits::*;
 use tetray_distributed::{
-    render_in_situ, render_in_situ_cells, spatial_split, InSituView, RankMesh,
+    InSituView, RankMesh, render_in_situ, render_in_situ_cells, spatial_split,
 };
 use tetray_engine::{Engine, Log, Source, WalkOptions};
-use tetray_mesh::cells::{assemble_at, CellArray, CellGrid, ReadOptions};
-use tetray_mesh::synthetic::{hollow_box, CellSplit};
-use tetray_mesh::{prepare, ScalarField, TetMesh};
+use tetray_mesh::cells::{CellArray, CellGrid, ReadOptions, assemble_at};
+use tetray_mesh::synthetic::{CellSplit, hollow_box};
+use tetray_mesh::{ScalarField, TetMesh, prepare};
 
 /// A nonlinear field, so a wrong split or order would show.
 fn field(p: Vec3) -> f32 {
@@ -133,7 +133,7 @@ fn hex_slab(grid: &CellGrid, rank: usize, size: usize) -> CellGrid {
     let mut new_id = vec![-1i64; used.len()];
     let mut points = Vec::new();
     let mut values = Vec::new();
-    for (p, _) in used.iter().enumerate().filter(|(_, &u)| u) {
+    for (p, _) in used.iter().enumerate().filter(|&(_, &u)| u) {
         new_id[p] = (points.len() / 3) as i64;
         points.extend_from_slice(&grid.points[3 * p..3 * p + 3]);
         values.push(grid.point_arrays[0].values[p]);
@@ -210,11 +210,11 @@ fn main() -> ExitCode {
         return ExitCode::SUCCESS;
     };
     println!("{}", frame.report.describe());
-    if let Some(path) = output {
-        if let Err(e) = frame.image.write_exr(std::path::Path::new(&path)) {
-            eprintln!("error: {e}");
-            return ExitCode::FAILURE;
-        }
+    if let Some(path) = output
+        && let Err(e) = frame.image.write_exr(std::path::Path::new(&path))
+    {
+        eprintln!("error: {e}");
+        return ExitCode::FAILURE;
     }
     // The whole mesh in this one process, through the engine as `tetray
     // render` makes a frame.

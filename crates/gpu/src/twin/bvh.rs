@@ -3,8 +3,8 @@
 
 use glam::{UVec3, Vec3};
 
-use super::predicate::{crossing, edge_sign, project, Ray};
-use super::{Inputs, Traffic, RECORD_BYTES};
+use super::predicate::{Ray, crossing, edge_sign, project};
+use super::{Inputs, RECORD_BYTES, Traffic};
 
 const STACK_SIZE: usize = 64;
 const PAD_REL: f32 = 1.525_878_9e-5;

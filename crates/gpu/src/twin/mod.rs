@@ -12,13 +12,13 @@ use glam::{Vec3, Vec4};
 use rayon::prelude::*;
 use tetray_core::{Camera, Image};
 
-use crate::layout::{Params, STAT_COUNT};
-use crate::render::{frame_params, GpuRenderOptions};
-use crate::upload::{IntegratorData, SceneData};
 use crate::GpuError;
-use bvh::{face_entry, first_entry, Skip, SKIP_MAX};
-use integrate::{sample_at, sample_near, segment_light, IntegratorInputs};
-use predicate::{crossing, crossing_from, edge_sign_of, edge_value, make_ray, project, Ray};
+use crate::layout::{Params, STAT_COUNT};
+use crate::render::{GpuRenderOptions, frame_params};
+use crate::upload::{IntegratorData, SceneData};
+use bvh::{SKIP_MAX, Skip, face_entry, first_entry};
+use integrate::{IntegratorInputs, sample_at, sample_near, segment_light};
+use predicate::{Ray, crossing, crossing_from, edge_sign_of, edge_value, make_ray, project};
 
 pub use integrate::{dawson, erfcx};
 

@@ -15,7 +15,7 @@ use tetray_gpu::{
 };
 use tetray_integrate::ScalarIntegrator;
 use tetray_mesh::{TetMesh, Topology};
-use tetray_raycast::{render_scalar, RenderOptions, RenderStats};
+use tetray_raycast::{RenderOptions, RenderStats, render_scalar};
 use tetray_scene::Scene;
 
 /// The adapter and compiled kernel, shared by a test binary. `None` (with a

@@ -58,7 +58,9 @@ pub enum ExodusError {
 
     /// A volume element type with a node count this reader does not map,
     /// or an element type it does not know.
-    #[error("{file}: element block {block}: unsupported element type \"{elem_type}\" with {nodes} nodes per element ({why})")]
+    #[error(
+        "{file}: element block {block}: unsupported element type \"{elem_type}\" with {nodes} nodes per element ({why})"
+    )]
     UnsupportedElement {
         file: String,
         block: String,

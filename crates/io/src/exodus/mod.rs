@@ -32,9 +32,9 @@ use std::path::Path;
 
 pub use error::ExodusError;
 
-use tetray_mesh::cells::{assemble_with, CellCounts, Linearize, ReadOptions};
 pub use tetray_mesh::ElementBlock;
 use tetray_mesh::TetMesh;
+use tetray_mesh::cells::{CellCounts, Linearize, ReadOptions, assemble_with};
 
 /// Which time step to read. At most one of the two may be given.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]

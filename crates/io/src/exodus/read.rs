@@ -2,8 +2,8 @@
 //! blocks (volume blocks kept in VTK node order, the others skipped), then
 //! the variables of one time step (see `vars.rs`).
 
-use super::elements::{family, vtk_cell, Family, VtkCell};
-use super::nc::{times, Nc};
+use super::elements::{Family, VtkCell, family, vtk_cell};
+use super::nc::{Nc, times};
 use super::vars::{choose_step, element_variables, nodal_variables, read_times};
 use super::{ElementBlock, ExodusError, ExodusOptions, KeptBlock};
 use tetray_mesh::cells::CellGrid;

@@ -3,7 +3,7 @@
 //! a block has none), and x/y/z component triples also one 3-component
 //! array.
 
-use super::nc::{times, Nc};
+use super::nc::{Nc, times};
 use super::{ExodusError, ExodusOptions, KeptBlock};
 use tetray_mesh::cells::CellArray;
 
@@ -159,7 +159,7 @@ pub(super) fn element_variables(
                         "variable \"{var}\" (element variable \"{name}\" on block {}, \
                          set in the truth table elem_var_tab)",
                         block.number
-                    )))
+                    )));
                 }
                 (_, true) => {}
             }

@@ -10,7 +10,7 @@
 
 use rayon::prelude::*;
 
-use crate::plot3d::{plot3d_split_counts, Plot3dGrid};
+use crate::plot3d::{Plot3dGrid, plot3d_split_counts};
 
 /// A cell along one axis and the coordinate in it, in [0, 1].
 pub(crate) type AxisCell = (usize, f64);

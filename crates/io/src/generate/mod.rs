@@ -16,8 +16,8 @@ mod plan;
 mod refine;
 pub mod solid;
 
-pub use plan::{near_uniform_factors, RefinementPlan};
-pub use refine::{refine, Refinement};
+pub use plan::{RefinementPlan, near_uniform_factors};
+pub use refine::{Refinement, refine};
 
 use crate::IoError;
 

@@ -14,9 +14,9 @@ use glam::Vec3;
 use rayon::prelude::*;
 use tetray_mesh::structured::templates;
 
-use super::solid::{cell_tets, TorusShell, CHUNK_HEXES, FIELDS};
 use super::GenerateError;
-use crate::vtk::{write_vtu_streamed, TetChunks, VtuIndex, VtuStreamOptions};
+use super::solid::{CHUNK_HEXES, FIELDS, TorusShell, cell_tets};
+use crate::vtk::{TetChunks, VtuIndex, VtuStreamOptions, write_vtu_streamed};
 
 /// One piece: the hexahedra with `iu` in `[start, end)`.
 struct Piece<'a> {

@@ -19,7 +19,7 @@ use std::path::Path;
 use super::refine::Refinement;
 use super::{GenerateError, MAX_TETS};
 use crate::plot3d::{
-    plot3d_split_counts, write_plot3d_files, Plot3dGrid, Plot3dSource, SplitCounts,
+    Plot3dGrid, Plot3dSource, SplitCounts, plot3d_split_counts, write_plot3d_files,
 };
 
 /// Refinements counted at most for one request before giving up.

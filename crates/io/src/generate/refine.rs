@@ -16,8 +16,8 @@
 
 use glam::Vec3;
 
-use super::folded::{AxisCell, FoldedCells};
 use super::GenerateError;
+use super::folded::{AxisCell, FoldedCells};
 use crate::plot3d::{Plot3dGrid, Plot3dSource};
 
 /// A refined grid computed on the fly from its source: nothing is stored
@@ -223,9 +223,10 @@ impl<'a> Refinement<'a> {
             }
         };
         let (ci, cj, ck) = (cells(&s[0], si), cells(&s[1], sj), cells(&s[2], sk));
-        folded.stencil([&ci.0[..ci.1], &cj.0[..cj.1], &ck.0[..ck.1]], |[i, j, k]| {
-            i + si * (j + sj * k)
-        })
+        folded.stencil(
+            [&ci.0[..ci.1], &cj.0[..cj.1], &ck.0[..ck.1]],
+            |[i, j, k]| i + si * (j + sj * k),
+        )
     }
 }
 

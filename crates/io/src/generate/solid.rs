@@ -26,8 +26,8 @@ use rayon::prelude::*;
 
 use super::plan::check_requested;
 use super::{GenerateError, MAX_TETS};
-use crate::vtk::{write_vtu_streamed, TetChunks, VtuIndex, VtuStreamOptions};
-use tetray_mesh::structured::{templates, Templates};
+use crate::vtk::{TetChunks, VtuIndex, VtuStreamOptions, write_vtu_streamed};
+use tetray_mesh::structured::{Templates, templates};
 use tetray_mesh::{ScalarField, TetMesh};
 
 /// Hexahedra per chunk of streamed tetrahedra.

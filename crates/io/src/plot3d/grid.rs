@@ -7,7 +7,7 @@ use std::path::Path;
 use glam::Vec3;
 use rayon::prelude::*;
 
-use super::layout::{detect, Kind};
+use super::layout::{Kind, detect};
 use crate::IoError;
 
 /// A single structured grid with its optional IBLANK and solution; point

@@ -23,10 +23,10 @@ use tetray_mesh::{ScalarField, TetMesh};
 
 use crate::IoError;
 pub use grid::{
-    read_plot3d_grid_bytes, read_plot3d_grid_files, Plot3dGrid, Plot3dSolution, Plot3dSource,
+    Plot3dGrid, Plot3dSolution, Plot3dSource, read_plot3d_grid_bytes, read_plot3d_grid_files,
 };
-pub use split::{plot3d_split_counts, SplitCounts};
-use split::{split_grid, Split};
+use split::{Split, split_grid};
+pub use split::{SplitCounts, plot3d_split_counts};
 pub use write::{
     plot3d_q_bytes, plot3d_xyz_bytes, write_plot3d_files, write_plot3d_q, write_plot3d_xyz,
 };

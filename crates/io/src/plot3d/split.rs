@@ -7,7 +7,7 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use super::grid::Plot3dSource;
-use tetray_mesh::structured::{hex_count, hex_tets, templates, Templates};
+use tetray_mesh::structured::{Templates, hex_count, hex_tets, templates};
 use tetray_mesh::tet_shape;
 
 /// What splitting a grid into tetrahedra gives, without the tetrahedra.

@@ -7,15 +7,15 @@
 
 use std::path::{Path, PathBuf};
 
-use quick_xml::events::{BytesStart, Event};
 use quick_xml::Reader;
+use quick_xml::events::{BytesStart, Event};
 use rayon::prelude::*;
 
 use super::xml::read_raw as read_xml_raw;
 use super::xml::tree::find;
-use super::{read_path, ReadOptions, VtkError, VtkRead};
-use tetray_mesh::cells::{assemble_with, CellGrid};
-use tetray_mesh::cells::{classify, type_name, CellKind};
+use super::{ReadOptions, VtkError, VtkRead, read_path};
+use tetray_mesh::cells::{CellGrid, assemble_with};
+use tetray_mesh::cells::{CellKind, classify, type_name};
 use tetray_mesh::cells::{drop_ghosts, drop_global_ids, weld};
 
 /// The parallel dataset elements and the serial type of their pieces.
@@ -117,7 +117,7 @@ fn xml_tree(bytes: &[u8], file: &str) -> Result<Node, VtkError> {
                         xml_error(bytes.len(), format!("the file ends inside <{}>", open.name))
                     }
                     None => xml_error(0, "no <VTKFile> element".into()),
-                })
+                });
             }
             _ => None,
         };
@@ -365,7 +365,7 @@ fn read_leaf(file: &Path, leaf: &Leaf, vtm: &str, depth: usize) -> Result<LeafGr
             return Ok(LeafGrid::Skipped(
                 format!("format .{ext} is not read in multi-block files"),
                 Vec::new(),
-            ))
+            ));
         }
     };
     let cells = lower_dim_cells(&grid);

@@ -103,7 +103,9 @@ pub enum VtkError {
     },
 
     /// A dataset type the readers do not read (polygonal data...).
-    #[error("{file}: dataset \"{found}\" is not supported: the readers take unstructured grids, structured grids, rectilinear grids and images (legacy UNSTRUCTURED_GRID, STRUCTURED_GRID, RECTILINEAR_GRID, STRUCTURED_POINTS; XML .vtu, .vts, .vtr, .vti, their parallel forms and .vtm)")]
+    #[error(
+        "{file}: dataset \"{found}\" is not supported: the readers take unstructured grids, structured grids, rectilinear grids and images (legacy UNSTRUCTURED_GRID, STRUCTURED_GRID, RECTILINEAR_GRID, STRUCTURED_POINTS; XML .vtu, .vts, .vtr, .vti, their parallel forms and .vtm)"
+    )]
     UnsupportedDataset { file: String, found: String },
 
     /// A piece of a parallel file, or a block of a multi-block file, that

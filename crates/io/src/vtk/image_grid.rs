@@ -4,8 +4,8 @@
 
 use std::path::Path;
 
-use tetray_mesh::cells::{per_tuple, to_f32, CellGrid};
 use tetray_mesh::ScalarField;
+use tetray_mesh::cells::{CellGrid, per_tuple, to_f32};
 
 use super::{ImageGeometry, ReadOptions, VtkError, VtkRead};
 

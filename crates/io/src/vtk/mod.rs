@@ -28,11 +28,11 @@ mod xml;
 use std::path::Path;
 
 pub use error::VtkError;
-pub use image_grid::{read_image_data_with, read_image_grid, ImageGrid};
+pub use image_grid::{ImageGrid, read_image_data_with, read_image_grid};
 pub use legacy::write::write_legacy;
-pub use piece_subset::{parallel_piece_count, read_piece_subset, PieceSubset};
-pub use xml::stream::{write_vtu_streamed, TetChunks, VtuIndex, VtuStreamOptions};
-pub use xml::write::{write_vtu, write_vtu_with, VtuOptions};
+pub use piece_subset::{PieceSubset, parallel_piece_count, read_piece_subset};
+pub use xml::stream::{TetChunks, VtuIndex, VtuStreamOptions, write_vtu_streamed};
+pub use xml::write::{VtuOptions, write_vtu, write_vtu_with};
 
 pub use tetray_mesh::cells::{
     CellCounts, Linearize, PieceCounts, ReadOptions, SubdividedCells, VtkRead,

@@ -11,7 +11,7 @@ use std::path::Path;
 
 use glam::DVec3;
 use tetray_mesh::bounds_f64;
-use tetray_mesh::cells::{assemble_at, drop_global_ids, weld, CellGrid};
+use tetray_mesh::cells::{CellGrid, assemble_at, drop_global_ids, weld};
 
 use super::collection::{piece_paths, require_volume, serial_raw};
 use super::{ReadOptions, VtkError, VtkRead};
@@ -101,13 +101,13 @@ fn take_values(grid: &mut CellGrid, own: usize, from: &CellGrid, i: usize) {
             .point_arrays
             .iter()
             .find(|a| a.name == array.name && a.components.max(1) == k);
-        if let Some(source) = source {
-            if let (Some(to), Some(values)) = (
+        if let Some(source) = source
+            && let (Some(to), Some(values)) = (
                 array.values.get_mut(own * k..(own + 1) * k),
                 source.values.get(i * k..(i + 1) * k),
-            ) {
-                to.copy_from_slice(values);
-            }
+            )
+        {
+            to.copy_from_slice(values);
         }
     }
 }

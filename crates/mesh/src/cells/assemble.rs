@@ -10,14 +10,14 @@ use rayon::prelude::*;
 
 use super::added_points::AddedPoints;
 use super::cell_table::CellTable;
-use super::cell_types::{classify, type_name, CellKind};
+use super::cell_types::{CellKind, classify, type_name};
 use super::grid::{CellArray, CellGrid};
 use super::poly_grid::{checked_faces, separate_inline_faces};
 use super::polyhedron::{prism_faces, split_polyhedron};
 use super::split::{hexahedron_cones, split_cell};
-use super::split_quadratic::{subdivide, Subdivision};
+use super::split_quadratic::{Subdivision, subdivide};
 use super::{CellCounts, CellError, ReadOptions, SubdividedCells, VtkRead};
-use crate::{first_index, first_position, ScalarField, TetMesh};
+use crate::{ScalarField, TetMesh, first_index, first_position};
 
 /// Checks what the reader can see, splits the cells and builds the mesh.
 pub fn assemble_with(grid: CellGrid, file: &str, opts: &ReadOptions) -> Result<VtkRead, CellError> {
@@ -109,17 +109,17 @@ pub fn assemble_at(
             }
             _ => {}
         }
-        if let Some(expected) = kind.point_count() {
-            if ids.len() != expected {
-                return Err(CellError::CellSize {
-                    file: file.into(),
-                    cell: c,
-                    type_id,
-                    type_name: type_name(type_id),
-                    expected,
-                    found: ids.len(),
-                });
-            }
+        if let Some(expected) = kind.point_count()
+            && ids.len() != expected
+        {
+            return Err(CellError::CellSize {
+                file: file.into(),
+                cell: c,
+                type_id,
+                type_name: type_name(type_id),
+                expected,
+                found: ids.len(),
+            });
         }
         volume_cell[c] = true;
         let (tets_before, points_before) = (tets.len(), added.len());

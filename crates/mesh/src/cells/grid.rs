@@ -1,8 +1,8 @@
 //! The cell model every reader produces: f64 points, cells with their VTK
 //! type, point and cell arrays, and what the pieces of a file carried.
 
-use super::polyhedron::PolyhedronFaces;
 use super::PieceCounts;
+use super::polyhedron::PolyhedronFaces;
 
 /// A named point or cell array as read, `components` values per tuple.
 #[derive(Debug, Clone)]

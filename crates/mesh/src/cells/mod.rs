@@ -47,13 +47,13 @@ mod split_quadratic;
 mod structured_grid;
 
 pub use assemble::{assemble_at, assemble_with, per_tuple, to_f32};
-pub use cell_types::{classify, type_name, CellKind};
+pub use cell_types::{CellKind, classify, type_name};
 pub use error::CellError;
 pub use grid::{CellArray, CellGrid};
 pub use pieces::{drop_ghosts, drop_global_ids, finish_grid, merge_arrays, weld};
 pub use poly_grid::{checked_faces, keep_cell_faces, separate_inline_faces, shift_faces};
 pub use polyhedron::{
-    from_face_stream, from_face_tables, parse_face_stream, PieceFaces, PolyhedronFaces,
+    PieceFaces, PolyhedronFaces, from_face_stream, from_face_tables, parse_face_stream,
 };
 pub use structured_grid::{
     add_cells, cell_count, extent_dims, image_points, point_count, rectilinear_points,

@@ -17,9 +17,9 @@
 
 use std::collections::HashMap;
 
+use super::CellError;
 use super::grid::{CellArray, CellGrid};
 use super::poly_grid::{keep_cell_faces, separate_inline_faces, shift_faces};
-use super::CellError;
 
 const GHOST_ARRAY: &str = "vtkGhostType";
 const DUPLICATE_CELL: u8 = 1;
@@ -137,7 +137,7 @@ fn keep_cells(grid: &mut CellGrid, keep: &[bool]) {
     let mut offsets = vec![0];
     let mut connectivity = Vec::with_capacity(grid.connectivity.len());
     let mut types = Vec::new();
-    for (c, _) in keep.iter().enumerate().filter(|(_, &k)| k) {
+    for (c, _) in keep.iter().enumerate().filter(|&(_, &k)| k) {
         connectivity.extend(cell_points(grid, c));
         offsets.push(connectivity.len());
         types.push(grid.types[c]);
@@ -149,7 +149,7 @@ fn keep_cells(grid: &mut CellGrid, keep: &[bool]) {
                 .values
                 .chunks_exact(k)
                 .zip(keep)
-                .filter(|(_, &kept)| kept)
+                .filter(|&(_, &kept)| kept)
                 .flat_map(|(t, _)| t.iter().copied())
                 .collect();
             array.values = values;
@@ -195,7 +195,7 @@ fn drop_unused_points(grid: &mut CellGrid) {
         values
             .chunks_exact(k)
             .zip(&new_index)
-            .filter(|(_, &n)| n != u32::MAX)
+            .filter(|&(_, &n)| n != u32::MAX)
             .flat_map(|(t, _)| t.iter().copied())
             .collect()
     };

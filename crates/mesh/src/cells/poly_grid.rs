@@ -4,9 +4,9 @@
 //! faces are keyed by cell index and hold point indices, like the
 //! connectivity).
 
-use super::grid::CellGrid;
-use super::polyhedron::{check_closed, parse_face_stream, PolyhedronFaces};
 use super::CellError;
+use super::grid::CellGrid;
+use super::polyhedron::{PolyhedronFaces, check_closed, parse_face_stream};
 
 /// The faces of polyhedron `cell` as point ids, checked in range and
 /// closed.
@@ -36,7 +36,7 @@ pub fn checked_faces(
                         cell,
                         index,
                         npoints,
-                    })
+                    });
                 }
             }
         }

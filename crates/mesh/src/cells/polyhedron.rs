@@ -25,7 +25,7 @@
 
 use std::collections::HashMap;
 
-use super::added_points::{mean_of, AddedPoints};
+use super::added_points::{AddedPoints, mean_of};
 
 /// Faces of the polyhedra of a grid, by cell index; point ids are global.
 pub type PolyhedronFaces = HashMap<usize, Vec<Vec<i64>>>;
@@ -218,7 +218,9 @@ pub fn check_closed(faces: &[Vec<u32>]) -> Result<(), String> {
     };
     Err(match up + down {
         1 => format!("the faces do not close: edge ({a}, {b}) belongs to one face only"),
-        2 => format!("the face orientations disagree: two faces run along edge ({a}, {b}) in the same direction"),
+        2 => format!(
+            "the face orientations disagree: two faces run along edge ({a}, {b}) in the same direction"
+        ),
         n => format!("edge ({a}, {b}) belongs to {n} faces"),
     })
 }

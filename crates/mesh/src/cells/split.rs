@@ -405,8 +405,9 @@ mod tests {
         let mut tets = Vec::new();
         let dropped = split_cell(CellKind::Hexahedron, &ids, &mut tets);
         assert!(dropped > 0);
-        assert!(tets
-            .iter()
-            .all(|t| (0..4).all(|i| (i + 1..4).all(|j| t[i] != t[j]))));
+        assert!(
+            tets.iter()
+                .all(|t| (0..4).all(|i| (i + 1..4).all(|j| t[i] != t[j])))
+        );
     }
 }

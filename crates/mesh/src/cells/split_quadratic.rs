@@ -41,10 +41,10 @@
 //! - 27 quadratic pyramid: corners 0-4 (apex 4), edges (0,1) (1,2) (2,3)
 //!   (3,0) (0,4) (1,4) (2,4) (3,4) (vtkQuadraticPyramid.h).
 
+use super::Linearize;
 use super::added_points::{AddedPoints, PointKey};
 use super::cell_types::CellKind;
 use super::split::{signed_volume6, split_cell};
-use super::Linearize;
 
 type Point = [f64; 3];
 

@@ -10,8 +10,8 @@
 //! point along an axis) gives quadrilaterals, lines or a vertex: no volume
 //! cell, which the readers report.
 
-use super::grid::CellGrid;
 use super::CellError;
+use super::grid::CellGrid;
 
 /// VTK cell type ids used here (vtkCellType.h).
 const VTK_VERTEX: i64 = 1;

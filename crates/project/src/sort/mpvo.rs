@@ -12,7 +12,7 @@ use std::collections::{BinaryHeap, VecDeque};
 use rayon::prelude::*;
 use tetray_mesh::NO_NEIGHBOR;
 
-use super::{depth_order, far_first_key, Order};
+use super::{Order, depth_order, far_first_key};
 use crate::scene::ProjectScene;
 use crate::view::View;
 

@@ -13,15 +13,15 @@ mod stages;
 
 use rayon::prelude::*;
 use tetray_core::Image;
-use tetray_gpu::twin::integrate::IntegratorInputs;
 use tetray_gpu::IntegratorData;
+use tetray_gpu::twin::integrate::IntegratorInputs;
 
-use crate::layout::Params;
-use crate::scene::{ProjectScene, FACE_VERTS};
-use crate::view::View;
 use crate::ProjectError;
-use raster::{covered_pixels, Screen};
-use stages::{fragment, vertex, Corner, Fragment};
+use crate::layout::Params;
+use crate::scene::{FACE_VERTS, ProjectScene};
+use crate::view::View;
+use raster::{Screen, covered_pixels};
+use stages::{Corner, Fragment, fragment, vertex};
 
 /// Rows per band: bands are rendered in parallel, each over every draw.
 const BAND_ROWS: u32 = 16;

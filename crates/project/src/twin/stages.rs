@@ -3,7 +3,7 @@
 
 use glam::{Vec2, Vec3, Vec4};
 use tetray_gpu::twin::integrate::IntegratorInputs;
-use tetray_gpu::twin::integrate::{in_interval, sample_at, segment_light, Light};
+use tetray_gpu::twin::integrate::{Light, in_interval, sample_at, segment_light};
 
 use crate::draws::NO_CLIP;
 use crate::layout::Params;

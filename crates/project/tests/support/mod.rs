@@ -16,13 +16,13 @@ use tetray_integrate::{
     ColorPoint, IntegratorOptions, Method, OpacityMode, OpacityPoint, ScalarIntegrator,
     TransferFunction,
 };
-use tetray_mesh::synthetic::{jittered_box, CellSplit};
+use tetray_mesh::synthetic::{CellSplit, jittered_box};
 use tetray_mesh::{ScalarField, TetMesh, Topology};
 use tetray_project::{
-    layout::knot_scalars, plan, samples_adaptively, twin, GpuProjectScene, GpuProjector,
-    ProjectScene, SortKind, TetIntervals, View,
+    GpuProjectScene, GpuProjector, ProjectScene, SortKind, TetIntervals, View,
+    layout::knot_scalars, plan, samples_adaptively, twin,
 };
-use tetray_raycast::{render_scalar, RenderOptions};
+use tetray_raycast::{RenderOptions, render_scalar};
 use tetray_scene::Scene;
 
 /// The adapter, shared by a test binary. `None` (with a loud message) when

@@ -6,7 +6,7 @@ use tetray_mesh::Topology;
 
 use super::*;
 use crate::walk::SegmentIntegrator;
-use tetray_mesh::synthetic::{add_field, hollow_box, CellSplit, ScalarSpec};
+use tetray_mesh::synthetic::{CellSplit, ScalarSpec, add_field, hollow_box};
 
 /// Light growing with the segment's length and scalars.
 pub(crate) struct Glow;
@@ -96,11 +96,12 @@ fn prefetching_walk_gives_the_same_bits() {
         let (a, sa) = &images[0];
         assert!(sa.counters.segments > 1000 && sa.counters.entries > sa.counters.rays_hit);
         for (b, sb) in &images[1..] {
-            assert!(a
-                .iter()
-                .flatten()
-                .map(|v| v.to_bits())
-                .eq(b.iter().flatten().map(|v| v.to_bits())));
+            assert!(
+                a.iter()
+                    .flatten()
+                    .map(|v| v.to_bits())
+                    .eq(b.iter().flatten().map(|v| v.to_bits()))
+            );
             assert_eq!(
                 (sa.counters.segments, sa.counters.steps, sa.counters.entries),
                 (sb.counters.segments, sb.counters.steps, sb.counters.entries)

@@ -7,7 +7,7 @@ use std::ops::{Add, Mul, Sub};
 
 use glam::{DVec3, Vec3};
 use tetray_core::watertight::RayFrame;
-use tetray_integrate::{reference, ColorPoint, OpacityPoint, TransferFunction};
+use tetray_integrate::{ColorPoint, OpacityPoint, TransferFunction, reference};
 use tetray_mesh::synthetic::ScalarSpec;
 
 /// A transfer function from `(scalar, rgb)` and `(scalar, alpha)` points.

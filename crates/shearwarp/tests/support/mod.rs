@@ -11,7 +11,7 @@ use tetray_integrate::{
     ColorPoint, IntegratorOptions, Method, OpacityMode, OpacityPoint, ScalarIntegrator,
     TransferFunction,
 };
-use tetray_raycast::{render_scalar, RenderOptions};
+use tetray_raycast::{RenderOptions, render_scalar};
 use tetray_scene::Scene;
 use tetray_shearwarp::RegularGrid;
 

@@ -20,14 +20,14 @@ use tetray_core::Camera;
 use tetray_gpu::{GpuIntegrator, GpuScene};
 use tetray_integrate::Method;
 
-pub use setup::{cells_for, generated_box, load_dataset, Dataset, Prepared, DATASETS};
-pub use timing::{time_cpu, time_projection, GpuRig, Timing};
+pub use setup::{DATASETS, Dataset, Prepared, cells_for, generated_box, load_dataset};
+pub use timing::{GpuRig, Timing, time_cpu, time_projection};
 
 use crate::cells;
 use crate::output::{Csv, OutputDir};
-use crate::svg::line::{line_figure, LinePanel, Series};
-use crate::svg::table::table_figure;
 use crate::svg::Axis;
+use crate::svg::line::{LinePanel, Series, line_figure};
+use crate::svg::table::table_figure;
 use crate::{Check, StudyError};
 
 /// Sizes of the study.
@@ -386,22 +386,22 @@ fn checks(table: &[Row], resolution: &[Row]) -> Vec<Check> {
             .iter()
             .filter(|r| r.renderer == renderer)
             .collect();
-        if let (Some(first), Some(last)) = (rows.first(), rows.last()) {
-            if last.width * last.height >= 64 * first.width * first.height {
-                checks.push(Check::new(
-                    format!("{renderer}: a frame of 64x the pixels walks more segments"),
-                    last.segments_per_frame > first.segments_per_frame,
-                    format!(
-                        "{}x{} {:.0} segments, {}x{} {:.0} segments",
-                        first.width,
-                        first.height,
-                        first.segments_per_frame,
-                        last.width,
-                        last.height,
-                        last.segments_per_frame
-                    ),
-                ));
-            }
+        if let (Some(first), Some(last)) = (rows.first(), rows.last())
+            && last.width * last.height >= 64 * first.width * first.height
+        {
+            checks.push(Check::new(
+                format!("{renderer}: a frame of 64x the pixels walks more segments"),
+                last.segments_per_frame > first.segments_per_frame,
+                format!(
+                    "{}x{} {:.0} segments, {}x{} {:.0} segments",
+                    first.width,
+                    first.height,
+                    first.segments_per_frame,
+                    last.width,
+                    last.height,
+                    last.segments_per_frame
+                ),
+            ));
         }
     }
     checks

@@ -10,8 +10,8 @@ use glam::Vec3;
 use tetray_boundary_bvh::BuildPreset;
 use tetray_engine::{CameraOptions, FrameOptions, IntegratorChoice, Log, Setup, Source};
 use tetray_integrate::{Method, ScalarIntegrator};
-use tetray_mesh::synthetic::{box_grid, CellSplit};
 use tetray_mesh::ScalarField;
+use tetray_mesh::synthetic::{CellSplit, box_grid};
 use tetray_scene::Scene;
 
 use crate::StudyError;

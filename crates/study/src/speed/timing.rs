@@ -5,7 +5,7 @@
 use tetray_core::Camera;
 use tetray_gpu::{GpuContext, GpuIntegrator, GpuRaycaster, GpuRenderOptions, GpuScene};
 use tetray_integrate::ScalarIntegrator;
-use tetray_raycast::{render_scalar, RenderOptions};
+use tetray_raycast::{RenderOptions, render_scalar};
 
 use crate::StudyError;
 

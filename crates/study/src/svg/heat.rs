@@ -5,7 +5,7 @@
 use base64::Engine as _;
 use image::ImageEncoder as _;
 
-use super::{draw_axes, format_number, ticks, Frame, Scale, Svg};
+use super::{Frame, Scale, Svg, draw_axes, format_number, ticks};
 
 /// A grid of values over `x_range` x `y_range`: `values[j * nx + i]` is
 /// the cell at column `i` (x) and row `j` (y, row 0 at `y_range.0`).

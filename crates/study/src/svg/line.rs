@@ -2,7 +2,7 @@
 
 use std::fmt::Write as _;
 
-use super::{draw_axes, fit_range, Axis, Frame, Scale, Svg, PALETTE};
+use super::{Axis, Frame, PALETTE, Scale, Svg, draw_axes, fit_range};
 
 /// How a series is drawn.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -173,11 +173,7 @@ pub fn fit_range(axis: &Axis, data: Option<(f64, f64)>) -> (f64, f64) {
         (Scale::Log10, Some((lo, hi))) if lo > 0.0 => {
             let lo = 10f64.powf(lo.log10().floor());
             let hi = 10f64.powf(hi.log10().ceil());
-            if hi > lo {
-                (lo, hi)
-            } else {
-                (lo, lo * 10.0)
-            }
+            if hi > lo { (lo, hi) } else { (lo, lo * 10.0) }
         }
         (Scale::Linear, None) => (0.0, 1.0),
         (Scale::Log10, _) => (1.0, 10.0),

@@ -1,8 +1,8 @@
 //! A cursor over a legacy VTK file: whitespace-separated keywords and ASCII
 //! values, with line counting, and raw big-endian blocks for BINARY files.
 
-use crate::vtk::numeric::{decode_f64, decode_i64, parse_f64, parse_i64, Scalar};
 use crate::vtk::VtkError;
+use crate::vtk::numeric::{Scalar, decode_f64, decode_i64, parse_f64, parse_i64};
 
 pub(super) struct Cursor<'a> {
     bytes: &'a [u8],

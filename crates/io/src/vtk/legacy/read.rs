@@ -9,10 +9,10 @@
 //! NORMALS, TEXTURE_COORDINATES, TENSORS, COLOR_SCALARS, lookup tables and
 //! id arrays are read past (with a warning where they carry data).
 
-use super::lex::{decode_name, Cursor};
+use super::lex::{Cursor, decode_name};
 use super::structured::{Kind, Structured};
-use crate::vtk::numeric::Scalar;
 use crate::vtk::ImageGeometry;
+use crate::vtk::numeric::Scalar;
 use crate::vtk::{ReadOptions, VtkError, VtkRead};
 use tetray_mesh::cells::{CellArray, CellGrid};
 
@@ -91,10 +91,10 @@ pub(crate) fn read_raw(
     while let Some(keyword) = p.cur.token() {
         let line = p.cur.line();
         let keyword = String::from_utf8_lossy(keyword).to_ascii_uppercase();
-        if let Some(s) = p.structured.as_mut() {
-            if s.section(&keyword, &mut p.cur)? {
-                continue;
-            }
+        if let Some(s) = p.structured.as_mut()
+            && s.section(&keyword, &mut p.cur)?
+        {
+            continue;
         }
         p.section(&keyword, line)?;
     }
@@ -144,7 +144,7 @@ impl Parser<'_> {
             _ => {
                 return Err(self
                     .cur
-                    .syntax(format!("expected ASCII or BINARY, found \"{format}\"")))
+                    .syntax(format!("expected ASCII or BINARY, found \"{format}\"")));
             }
         };
         let keyword = self.cur.word("DATASET")?;
@@ -329,23 +329,23 @@ impl Parser<'_> {
                         file: self.cur.file.into(),
                         section,
                         message: format!(
-                        "offset {i} is {}: offsets must start at 0 and not decrease up to {nconn}",
-                        offsets[i]
-                    ),
-                    })
+                            "offset {i} is {}: offsets must start at 0 and not decrease up to {nconn}",
+                            offsets[i]
+                        ),
+                    });
                 }
             }
         }
-        if let Some(&last) = starts.last() {
-            if last != nconn {
-                return Err(VtkError::CountMismatch {
-                    file: self.cur.file.into(),
-                    section,
-                    what: "last offset (the CONNECTIVITY size)".into(),
-                    expected: nconn,
-                    found: last,
-                });
-            }
+        if let Some(&last) = starts.last()
+            && last != nconn
+        {
+            return Err(VtkError::CountMismatch {
+                file: self.cur.file.into(),
+                section,
+                what: "last offset (the CONNECTIVITY size)".into(),
+                expected: nconn,
+                found: last,
+            });
         }
         self.grid.offsets = starts;
         self.cells = Some(Declared {
@@ -430,7 +430,7 @@ impl Parser<'_> {
                 _ => {
                     return Err(self
                         .cur
-                        .syntax(format!("{section}: bad component count \"{w}\"")))
+                        .syntax(format!("{section}: bad component count \"{w}\"")));
                 }
             },
         };
@@ -569,7 +569,7 @@ impl Parser<'_> {
                     file: file.into(),
                     section: format!("line {}, CELLS", c.line),
                     message: "CELLS without CELL_TYPES".into(),
-                })
+                });
             }
             (_, Some(t)) if t.count != ncells => {
                 return Err(mismatch(
@@ -577,7 +577,7 @@ impl Parser<'_> {
                     "CELL_TYPES",
                     "cell types (the CELLS count)",
                     ncells,
-                ))
+                ));
             }
             _ => {}
         }

@@ -11,9 +11,9 @@
 //! `nx ny nz` tuples and CELL_DATA one per cell.
 
 use super::lex::Cursor;
-use crate::vtk::numeric::Scalar;
 use crate::vtk::ImageGeometry;
 use crate::vtk::VtkError;
+use crate::vtk::numeric::Scalar;
 use tetray_mesh::cells::CellGrid;
 use tetray_mesh::cells::{add_cells, cell_count, image_points, point_count, rectilinear_points};
 

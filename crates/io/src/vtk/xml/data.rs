@@ -14,8 +14,8 @@ use std::borrow::Cow;
 use std::io::Read;
 
 use super::tree::{AppendedEncoding, Format, VtuDoc, XmlArray};
-use crate::vtk::numeric::{decode_f64, decode_i64, parse_f64, parse_i64, u64_of, Scalar};
 use crate::vtk::VtkError;
+use crate::vtk::numeric::{Scalar, decode_f64, decode_i64, parse_f64, parse_i64, u64_of};
 
 pub(crate) const ZLIB: &str = "vtkZLibDataCompressor";
 
@@ -119,7 +119,7 @@ impl ArrayDecoder<'_, '_> {
                     section: section.into(),
                     what: "compressor",
                     value: other.into(),
-                })
+                });
             }
         };
         if bytes.len() % ty.size() != 0 {

@@ -4,8 +4,8 @@
 
 use super::data::ArrayDecoder;
 use super::tree::{VtuDoc, XmlArray, XmlPiece};
-use crate::vtk::numeric::Scalar;
 use crate::vtk::VtkError;
+use crate::vtk::numeric::Scalar;
 use tetray_mesh::cells as polyhedron;
 use tetray_mesh::cells::merge_arrays as merge;
 use tetray_mesh::cells::{CellArray, CellGrid};

@@ -21,7 +21,7 @@ pub trait TetChunks {
     /// Calls `sink` with consecutive runs of tetrahedra, `tet_count` in
     /// all, in order; stops at the first error.
     fn for_each_chunk(&self, sink: &mut dyn FnMut(&[[u32; 4]]) -> io::Result<()>)
-        -> io::Result<()>;
+    -> io::Result<()>;
 }
 
 impl TetChunks for [[u32; 4]] {

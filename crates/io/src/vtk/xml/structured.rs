@@ -5,15 +5,15 @@
 //! `WholeExtent`); several Pieces are welded on their shared faces.
 
 use super::data::ArrayDecoder;
+use tetray_mesh::cells::CellGrid;
 use tetray_mesh::cells::merge_arrays as merge;
 use tetray_mesh::cells::weld;
-use tetray_mesh::cells::CellGrid;
 use tetray_mesh::cells::{
     add_cells, cell_count, extent_dims, image_points, point_count, rectilinear_points,
 };
 
 use super::read::{common_global_ids, piece_error, read_arrays, read_points, section};
-use super::tree::{find, VtuDoc, XmlPiece};
+use super::tree::{VtuDoc, XmlPiece, find};
 use crate::vtk::ImageGeometry;
 use crate::vtk::VtkError;
 

@@ -6,8 +6,8 @@
 //! Appended raw data is not XML, so parsing stops at the start tag of
 //! `<AppendedData>`; its bytes are located by hand from there.
 
-use quick_xml::events::{BytesStart, Event};
 use quick_xml::Reader;
+use quick_xml::events::{BytesStart, Event};
 
 use crate::vtk::VtkError;
 
@@ -343,7 +343,7 @@ impl<'a> Builder<'a> {
                     return Err(VtkError::UnsupportedDataset {
                         file: self.file.into(),
                         found: value,
-                    })
+                    });
                 }
                 "type" => self.doc.dataset = value,
                 "byte_order" => {
@@ -413,7 +413,7 @@ impl<'a> Builder<'a> {
             ("binary", _) => Format::Binary,
             ("appended", Some(offset)) => Format::Appended { offset },
             ("appended", None) => {
-                return Err(self.xml_error(at, "an appended DataArray without an offset".into()))
+                return Err(self.xml_error(at, "an appended DataArray without an offset".into()));
             }
             (other, _) => {
                 return Err(VtkError::Unsupported {
@@ -421,7 +421,7 @@ impl<'a> Builder<'a> {
                     section: format!("line {line}, DataArray"),
                     what: "DataArray format",
                     value: other.into(),
-                })
+                });
             }
         };
         Ok(array)
@@ -455,11 +455,11 @@ impl<'a> Builder<'a> {
 
     fn text(&mut self, t: &[u8]) {
         let depth = self.stack.len();
-        if let Some((array, d)) = self.array.as_mut() {
-            if *d == depth {
-                array.text.extend_from_slice(t);
-                array.text.push(b' ');
-            }
+        if let Some((array, d)) = self.array.as_mut()
+            && *d == depth
+        {
+            array.text.extend_from_slice(t);
+            array.text.push(b' ');
         }
     }
 
@@ -483,7 +483,7 @@ impl<'a> Builder<'a> {
                             section: format!("line {}, <AppendedData>", self.lines.at(at)),
                             what: "AppendedData encoding",
                             value: other.into(),
-                        })
+                        });
                     }
                 };
             }

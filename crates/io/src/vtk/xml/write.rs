@@ -3,13 +3,13 @@
 
 use std::io::{self, Write};
 
-use base64::engine::general_purpose::STANDARD;
 use base64::Engine;
-use flate2::write::ZlibEncoder;
+use base64::engine::general_purpose::STANDARD;
 use flate2::Compression;
+use flate2::write::ZlibEncoder;
 
 use super::data::ZLIB;
-use super::stream::{write_vtu_streamed, VtuIndex, VtuStreamOptions};
+use super::stream::{VtuIndex, VtuStreamOptions, write_vtu_streamed};
 use super::tree::escape;
 use crate::vtk::VtuEncoding;
 use tetray_mesh::TetMesh;
