@@ -12,7 +12,7 @@ use crate::source::{Source, load, load_image_data};
 /// the integrator's tables, so a bad camera fails fast), the transfer
 /// function and the integrator.
 pub fn prepare(source: Source, options: &FrameOptions, log: Log<'_>) -> Result<Setup, EngineError> {
-    if let Source::Embedded = source {
+    if matches!(source, Source::Embedded) && options.representation != Representation::Grid {
         let options = embedded_defaults(options);
         if let TfSource::ParaView { label, .. } = &options.integrator.tf
             && label == EMBEDDED_PRESET_LABEL

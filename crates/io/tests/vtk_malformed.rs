@@ -7,6 +7,7 @@ mod vtk_common;
 use tetray_io::vtk::{
     VtkError, VtkRead, VtuEncoding, read_legacy_bytes, read_vtu_bytes, write_legacy, write_vtu,
 };
+use tetray_mesh::cells::CellError;
 use vtk_common::sample_mesh;
 
 /// Reads every prefix of `bytes`. Each must be an error unless `may_parse`
@@ -115,7 +116,7 @@ fn legacy_count_errors() {
         "{FIVE_POINTS}CELLS 1 6\n4 0 1 2 3 4\nCELL_TYPES 1\n10\n"
     ));
     assert!(
-        matches!(&e, VtkError::CountMismatch { expected: 5, found: 6, section, .. } if section.contains("CELLS")),
+        matches!(&e, VtkError::Cell(CellError::CountMismatch { expected: 5, found: 6, section, .. }) if section.contains("CELLS")),
         "{e}"
     );
     let e = legacy_err(&format!(
@@ -124,11 +125,11 @@ fn legacy_count_errors() {
     assert!(
         matches!(
             &e,
-            VtkError::CountMismatch {
+            VtkError::Cell(CellError::CountMismatch {
                 expected: 2,
                 found: 1,
                 ..
-            }
+            })
         ),
         "{e}"
     );
@@ -136,21 +137,21 @@ fn legacy_count_errors() {
         "{FIVE_POINTS}CELLS 1 5\n7 0 1 2 3\nCELL_TYPES 1\n10\n"
     ));
     assert!(
-        matches!(&e, VtkError::Invalid { message, .. } if message.contains("claims 7 points")),
+        matches!(&e, VtkError::Cell(CellError::Invalid { message, .. }) if message.contains("claims 7 points")),
         "{e}"
     );
     let e = legacy_err(&format!(
         "{FIVE_POINTS}CELLS 1 5\n4 0 1 2 3\nCELL_TYPES 2\n10 10\n"
     ));
     assert!(
-        matches!(&e, VtkError::CountMismatch { expected: 1, found: 2, section, .. } if section.contains("CELL_TYPES")),
+        matches!(&e, VtkError::Cell(CellError::CountMismatch { expected: 1, found: 2, section, .. }) if section.contains("CELL_TYPES")),
         "{e}"
     );
     let e = legacy_err(&format!(
         "{FIVE_POINTS}POINT_DATA 4\nSCALARS s float\nLOOKUP_TABLE default\n1 2 3 4\n"
     ));
     assert!(
-        matches!(&e, VtkError::CountMismatch { expected: 5, found: 4, section, .. } if section.contains("POINT_DATA")),
+        matches!(&e, VtkError::Cell(CellError::CountMismatch { expected: 5, found: 4, section, .. }) if section.contains("POINT_DATA")),
         "{e}"
     );
     // A scalar array shorter than the points: the file ends inside it.
@@ -178,7 +179,7 @@ fn legacy_count_errors() {
         "{FIVE_POINTS}METADATA\nINFORMATION 0\nCELLS 1 5\n4 0 1 2 3\nCELL_TYPES 2\n10 10\n"
     ));
     assert!(
-        matches!(&e, VtkError::CountMismatch { section, .. } if section.contains("CELL_TYPES")),
+        matches!(&e, VtkError::Cell(CellError::CountMismatch { section, .. }) if section.contains("CELL_TYPES")),
         "{e}"
     );
 }
@@ -191,12 +192,12 @@ fn legacy_index_value_and_cell_errors() {
     assert!(
         matches!(
             e,
-            VtkError::BadIndex {
+            VtkError::Cell(CellError::BadIndex {
                 cell: 1,
                 index: 9,
                 npoints: 5,
                 ..
-            }
+            })
         ),
         "{e}"
     );
@@ -206,26 +207,29 @@ fn legacy_index_value_and_cell_errors() {
     assert!(
         matches!(
             e,
-            VtkError::BadIndex {
+            VtkError::Cell(CellError::BadIndex {
                 cell: 0,
                 index: -1,
                 ..
-            }
+            })
         ),
         "{e}"
     );
     let e = legacy_err("POINTS 2 float\n0 0 0 1 nan 0\n");
     assert!(
-        matches!(&e, VtkError::NonFinite { section, .. } if section.contains("point 1 coordinate y")),
+        matches!(&e, VtkError::Cell(CellError::NonFinite { section, .. }) if section.contains("point 1 coordinate y")),
         "{e}"
     );
     let e = legacy_err("POINTS 1 double\n0 1e300 0\n");
-    assert!(matches!(e, VtkError::NonFinite { index: 1, .. }), "{e}");
+    assert!(
+        matches!(e, VtkError::Cell(CellError::NonFinite { index: 1, .. })),
+        "{e}"
+    );
     let e = legacy_err(&format!(
         "{FIVE_POINTS}POINT_DATA 5\nSCALARS s double 1\nLOOKUP_TABLE default\n0 1 inf 3 4\n"
     ));
     assert!(
-        matches!(&e, VtkError::NonFinite { index: 2, section, .. } if section.contains("\"s\"")),
+        matches!(&e, VtkError::Cell(CellError::NonFinite { index: 2, section, .. }) if section.contains("\"s\"")),
         "{e}"
     );
     let e = legacy_err(&format!(
@@ -234,12 +238,12 @@ fn legacy_index_value_and_cell_errors() {
     assert!(
         matches!(
             e,
-            VtkError::UnsupportedCell {
+            VtkError::Cell(CellError::UnsupportedCell {
                 cell: 1,
                 type_id: 78,
                 type_name: "Bezier tetrahedron",
                 ..
-            }
+            })
         ),
         "{e}"
     );
@@ -251,7 +255,10 @@ fn legacy_index_value_and_cell_errors() {
         "{FIVE_POINTS}CELLS 1 5\n4 0 1 2 3\nCELL_TYPES 1\n99\n"
     ));
     assert!(
-        matches!(e, VtkError::UnsupportedCell { type_id: 99, .. }),
+        matches!(
+            e,
+            VtkError::Cell(CellError::UnsupportedCell { type_id: 99, .. })
+        ),
         "{e}"
     );
     let e = legacy_err(&format!(
@@ -260,11 +267,11 @@ fn legacy_index_value_and_cell_errors() {
     assert!(
         matches!(
             e,
-            VtkError::CellSize {
+            VtkError::Cell(CellError::CellSize {
                 expected: 8,
                 found: 4,
                 ..
-            }
+            })
         ),
         "{e}"
     );
@@ -283,10 +290,10 @@ fn legacy_format_errors() {
     assert!(
         matches!(
             e,
-            VtkError::Unsupported {
+            VtkError::Cell(CellError::Unsupported {
                 what: "data type",
                 ..
-            }
+            })
         ),
         "{e}"
     );
@@ -302,7 +309,7 @@ fn legacy_format_errors() {
     );
     let e = legacy_err(&format!("{FIVE_POINTS}CELLS 1 5\n4 0 1 2 3\n"));
     assert!(
-        matches!(&e, VtkError::Invalid { message, .. } if message.contains("CELL_TYPES")),
+        matches!(&e, VtkError::Cell(CellError::Invalid { message, .. }) if message.contains("CELL_TYPES")),
         "{e}"
     );
 }
@@ -345,7 +352,7 @@ fn vtu_count_index_and_value_errors() {
         "",
     ));
     assert!(
-        matches!(&e, VtkError::CountMismatch { expected: 1, found: 2, section, .. } if section.contains("\"offsets\"")),
+        matches!(&e, VtkError::Cell(CellError::CountMismatch { expected: 1, found: 2, section, .. }) if section.contains("\"offsets\"")),
         "{e}"
     );
     let e = vtu_err(&vtu(
@@ -353,7 +360,7 @@ fn vtu_count_index_and_value_errors() {
         "",
     ));
     assert!(
-        matches!(&e, VtkError::CountMismatch { expected: 4, found: 5, section, .. } if section.contains("connectivity")),
+        matches!(&e, VtkError::Cell(CellError::CountMismatch { expected: 4, found: 5, section, .. }) if section.contains("connectivity")),
         "{e}"
     );
     let e = vtu_err(&vtu(
@@ -363,12 +370,12 @@ fn vtu_count_index_and_value_errors() {
     assert!(
         matches!(
             e,
-            VtkError::BadIndex {
+            VtkError::Cell(CellError::BadIndex {
                 cell: 0,
                 index: 4,
                 npoints: 4,
                 ..
-            }
+            })
         ),
         "{e}"
     );
@@ -380,11 +387,11 @@ fn vtu_count_index_and_value_errors() {
     assert!(
         matches!(
             e,
-            VtkError::CountMismatch {
+            VtkError::Cell(CellError::CountMismatch {
                 expected: 12,
                 found: 9,
                 ..
-            }
+            })
         ),
         "{e}"
     );
@@ -394,7 +401,7 @@ fn vtu_count_index_and_value_errors() {
         "",
     ));
     assert!(
-        matches!(&e, VtkError::CountMismatch { expected: 4, found: 3, section, .. } if section.contains("\"rho\"")),
+        matches!(&e, VtkError::Cell(CellError::CountMismatch { expected: 4, found: 3, section, .. }) if section.contains("\"rho\"")),
         "{e}"
     );
     let data = "<PointData><DataArray type=\"Float64\" Name=\"rho\" format=\"ascii\">1 NaN 3 4</DataArray></PointData>\n";
@@ -402,7 +409,10 @@ fn vtu_count_index_and_value_errors() {
         &format!("{data}{POINTS4}{}", cells("0 1 2 3", "4", "10")),
         "",
     ));
-    assert!(matches!(e, VtkError::NonFinite { index: 1, .. }), "{e}");
+    assert!(
+        matches!(e, VtkError::Cell(CellError::NonFinite { index: 1, .. })),
+        "{e}"
+    );
     let e = vtu_err(&vtu(
         &format!("{POINTS4}{}", cells("0 1 2 3 0 1 2 3 0 1", "10", "78")),
         "",
@@ -410,11 +420,11 @@ fn vtu_count_index_and_value_errors() {
     assert!(
         matches!(
             e,
-            VtkError::UnsupportedCell {
+            VtkError::Cell(CellError::UnsupportedCell {
                 cell: 0,
                 type_id: 78,
                 ..
-            }
+            })
         ),
         "{e}"
     );
@@ -426,7 +436,7 @@ fn vtu_count_index_and_value_errors() {
         "",
     ));
     assert!(
-        matches!(&e, VtkError::Invalid { message, .. } if message.contains("\"types\"")),
+        matches!(&e, VtkError::Cell(CellError::Invalid { message, .. }) if message.contains("\"types\"")),
         "{e}"
     );
 }
@@ -443,10 +453,10 @@ fn vtu_format_errors() {
     assert!(
         matches!(
             e,
-            VtkError::Unsupported {
+            VtkError::Cell(CellError::Unsupported {
                 what: "header_type",
                 ..
-            }
+            })
         ),
         "{e}"
     );
@@ -454,10 +464,10 @@ fn vtu_format_errors() {
     assert!(
         matches!(
             e,
-            VtkError::Unsupported {
+            VtkError::Cell(CellError::Unsupported {
                 what: "byte_order",
                 ..
-            }
+            })
         ),
         "{e}"
     );
@@ -468,10 +478,10 @@ fn vtu_format_errors() {
     assert!(
         matches!(
             e,
-            VtkError::Unsupported {
+            VtkError::Cell(CellError::Unsupported {
                 what: "DataArray format",
                 ..
-            }
+            })
         ),
         "{e}"
     );
@@ -486,7 +496,7 @@ fn vtu_format_errors() {
     );
     let e = vtu_err(&vtu(&appended, ""));
     assert!(
-        matches!(&e, VtkError::Invalid { message, .. } if message.contains("AppendedData")),
+        matches!(&e, VtkError::Cell(CellError::Invalid { message, .. }) if message.contains("AppendedData")),
         "{e}"
     );
 }
@@ -546,7 +556,7 @@ fn binary_payload_errors() {
     )
     .unwrap_err();
     assert!(
-        matches!(&e, VtkError::Unsupported { what: "compressor", value, .. } if value == "vtkLZ4DataCompressor"),
+        matches!(&e, VtkError::Cell(CellError::Unsupported { what: "compressor", value, .. }) if value == "vtkLZ4DataCompressor"),
         "{e}"
     );
     let e = read_vtu_bytes(
@@ -557,10 +567,10 @@ fn binary_payload_errors() {
     assert!(
         matches!(
             e,
-            VtkError::Unsupported {
+            VtkError::Cell(CellError::Unsupported {
                 what: "AppendedData encoding",
                 ..
-            }
+            })
         ),
         "{e}"
     );
@@ -578,10 +588,10 @@ fn binary_payload_errors() {
     assert!(
         matches!(
             e,
-            VtkError::Unsupported {
+            VtkError::Cell(CellError::Unsupported {
                 what: "DataArray type",
                 ..
-            }
+            })
         ),
         "{e}"
     );

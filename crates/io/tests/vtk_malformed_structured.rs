@@ -6,6 +6,7 @@
 mod structured_common;
 
 use std::path::Path;
+use tetray_mesh::cells::CellError;
 
 use structured_common::{
     ENCODINGS, Enc, Piece, TempDir, array, extent_attr, section, unstructured_piece, warped_points,
@@ -202,11 +203,11 @@ fn inconsistent_structured_xml_files_are_named_errors() {
     assert!(
         matches!(
             e,
-            VtkError::CountMismatch {
+            VtkError::Cell(CellError::CountMismatch {
                 expected: 36,
                 found: 33,
                 ..
-            }
+            })
         ),
         "{text}"
     );
@@ -252,11 +253,11 @@ fn inconsistent_structured_xml_files_are_named_errors() {
     assert!(
         matches!(
             e,
-            VtkError::CountMismatch {
+            VtkError::Cell(CellError::CountMismatch {
                 expected: 3,
                 found: 2,
                 ..
-            }
+            })
         ),
         "{text}"
     );
@@ -282,11 +283,11 @@ fn inconsistent_structured_xml_files_are_named_errors() {
     assert!(
         matches!(
             e,
-            VtkError::CountMismatch {
+            VtkError::Cell(CellError::CountMismatch {
                 expected: 12,
                 found: 11,
                 ..
-            }
+            })
         ),
         "{text}"
     );
@@ -342,11 +343,11 @@ fn inconsistent_legacy_structured_files_are_named_errors() {
     assert!(
         matches!(
             e,
-            VtkError::CountMismatch {
+            VtkError::Cell(CellError::CountMismatch {
                 expected: 8,
                 found: 7,
                 ..
-            }
+            })
         ),
         "{text}"
     );
@@ -362,11 +363,11 @@ fn inconsistent_legacy_structured_files_are_named_errors() {
     assert!(
         matches!(
             e,
-            VtkError::CountMismatch {
+            VtkError::Cell(CellError::CountMismatch {
                 expected: 2,
                 found: 3,
                 ..
-            }
+            })
         ),
         "{text}"
     );
@@ -389,11 +390,11 @@ fn inconsistent_legacy_structured_files_are_named_errors() {
     assert!(
         matches!(
             e,
-            VtkError::CountMismatch {
+            VtkError::Cell(CellError::CountMismatch {
                 expected: 8,
                 found: 9,
                 ..
-            }
+            })
         ),
         "{text}"
     );

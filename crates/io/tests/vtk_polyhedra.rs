@@ -5,6 +5,7 @@
 mod vtk_common;
 
 use std::fmt::Write;
+use tetray_mesh::cells::CellError;
 
 use tetray_io::vtk::{VtkError, VtkRead, read_legacy_bytes, read_vtu_bytes};
 use vtk_common::{Lcg, face_counts, volume6};
@@ -387,11 +388,11 @@ fn malformed_cells_are_one_clear_error() {
     assert!(
         matches!(
             e,
-            VtkError::BadIndex {
+            VtkError::Cell(CellError::BadIndex {
                 cell: 0,
                 index: 99,
                 ..
-            }
+            })
         ),
         "{e}"
     );
@@ -449,7 +450,7 @@ fn added_points_beyond_f32_are_an_error() {
     )
     .unwrap_err();
     assert!(
-        matches!(&e, VtkError::NonFinite { section, .. } if section.contains("points added by the splits")),
+        matches!(&e, VtkError::Cell(CellError::NonFinite { section, .. }) if section.contains("points added by the splits")),
         "{e}"
     );
 }

@@ -6,6 +6,7 @@
 //! Pieces and leaves are read in parallel, then welded (`pieces.rs`).
 
 use std::path::{Path, PathBuf};
+use tetray_mesh::cells::CellError;
 
 use quick_xml::Reader;
 use quick_xml::events::{BytesStart, Event};
@@ -170,11 +171,11 @@ pub(super) fn piece_paths(path: &Path) -> Result<Vec<PathBuf>, VtkError> {
         .filter_map(|n| n.attribute("Source"))
         .collect();
     if sources.is_empty() {
-        return Err(VtkError::Invalid {
+        return Err(VtkError::Cell(CellError::Invalid {
             file: name,
             section: format!("line {}, <{}>", dataset.line, dataset.name),
             message: "no <Piece Source=\"...\"> element".into(),
-        });
+        }));
     }
     let folder = folder_of(path);
     sources
@@ -259,13 +260,13 @@ const MAX_NESTING: usize = 16;
 fn multiblock_raw(path: &Path, block: Option<&str>, depth: usize) -> Result<CellGrid, VtkError> {
     let name = path.display().to_string();
     if depth > MAX_NESTING {
-        return Err(VtkError::Invalid {
+        return Err(VtkError::Cell(CellError::Invalid {
             file: name,
             section: "<DataSet file>".into(),
             message: format!(
                 "multi-block files nested more than {MAX_NESTING} deep (a file naming itself?)"
             ),
-        });
+        }));
     }
     let root = xml_tree(&read_path(path)?, &name)?;
     let Some(top) = root

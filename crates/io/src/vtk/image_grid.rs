@@ -3,6 +3,7 @@
 //! parsing as the tetrahedral readers, stopped before the cells are split.
 
 use std::path::Path;
+use tetray_mesh::cells::CellError;
 
 use tetray_mesh::ScalarField;
 use tetray_mesh::cells::{CellGrid, per_tuple, to_f32};
@@ -67,10 +68,12 @@ fn image_grid(
     image: Option<ImageGeometry>,
     file: &str,
 ) -> Result<ImageGrid, VtkError> {
-    let invalid = |message: String| VtkError::Invalid {
-        file: file.into(),
-        section: grid.dataset.into(),
-        message,
+    let invalid = |message: String| {
+        VtkError::Cell(CellError::Invalid {
+            file: file.into(),
+            section: grid.dataset.into(),
+            message,
+        })
     };
     let Some(image) = image.filter(|_| grid.dataset == "ImageData") else {
         return Err(invalid(format!(

@@ -8,6 +8,7 @@
 use std::collections::HashMap;
 use std::ops::Range;
 use std::path::Path;
+use tetray_mesh::cells::CellError;
 
 use glam::DVec3;
 use tetray_mesh::bounds_f64;
@@ -41,7 +42,7 @@ pub fn read_piece_subset(path: &Path, pieces: Range<usize>) -> Result<PieceSubse
     let name = path.display().to_string();
     let sources = piece_paths(path)?;
     if pieces.end > sources.len() {
-        return Err(VtkError::Invalid {
+        return Err(VtkError::Cell(CellError::Invalid {
             file: name,
             section: "<Piece>".into(),
             message: format!(
@@ -50,7 +51,7 @@ pub fn read_piece_subset(path: &Path, pieces: Range<usize>) -> Result<PieceSubse
                 pieces.end,
                 sources.len()
             ),
-        });
+        }));
     }
     let grids = sources[pieces.clone()]
         .iter()
@@ -59,11 +60,11 @@ pub fn read_piece_subset(path: &Path, pieces: Range<usize>) -> Result<PieceSubse
     let mut grid = weld(grids, &name)?;
     grid.pieces.pieces = pieces.len();
     if !grid.polyhedron_faces.is_empty() {
-        return Err(VtkError::Invalid {
+        return Err(VtkError::Cell(CellError::Invalid {
             file: name,
             section: "polyhedra".into(),
             message: "a distributed render does not read polyhedra (type 42) from pieces".into(),
-        });
+        }));
     }
     let key = |xyz: &[f64]| [0, 1, 2].map(|a| (xyz[a] + 0.0).to_bits());
     let index: HashMap<[u64; 3], usize> = grid

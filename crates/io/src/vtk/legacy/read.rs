@@ -14,6 +14,7 @@ use super::structured::{Kind, Structured};
 use crate::vtk::ImageGeometry;
 use crate::vtk::numeric::Scalar;
 use crate::vtk::{ReadOptions, VtkError, VtkRead};
+use tetray_mesh::cells::CellError;
 use tetray_mesh::cells::{CellArray, CellGrid};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -222,11 +223,13 @@ impl Parser<'_> {
 
     fn data_type(&mut self, section: &str) -> Result<Scalar, VtkError> {
         let name = self.cur.word(&format!("the data type of {section}"))?;
-        Scalar::from_legacy_name(name).ok_or_else(|| VtkError::Unsupported {
-            file: self.cur.file.into(),
-            section: section.into(),
-            what: "data type",
-            value: name.into(),
+        Scalar::from_legacy_name(name).ok_or_else(|| {
+            VtkError::Cell(CellError::Unsupported {
+                file: self.cur.file.into(),
+                section: section.into(),
+                what: "data type",
+                value: name.into(),
+            })
         })
     }
 
@@ -264,17 +267,17 @@ impl Parser<'_> {
         let mut at = 0;
         for c in 0..first {
             let Some(&k) = list.get(at) else {
-                return Err(VtkError::CountMismatch {
+                return Err(VtkError::Cell(CellError::CountMismatch {
                     file: self.cur.file.into(),
                     section,
                     what: format!("cells in {second} integers (it ends before cell {c})"),
                     expected: first,
                     found: c,
-                });
+                }));
             };
             let k = usize::try_from(k).ok().filter(|&k| k < list.len() - at);
             let Some(k) = k else {
-                return Err(VtkError::Invalid {
+                return Err(VtkError::Cell(CellError::Invalid {
                     file: self.cur.file.into(),
                     section,
                     message: format!(
@@ -282,20 +285,20 @@ impl Parser<'_> {
                         list[at],
                         list.len() - at - 1
                     ),
-                });
+                }));
             };
             connectivity.extend_from_slice(&list[at + 1..at + 1 + k]);
             offsets.push(connectivity.len());
             at += k + 1;
         }
         if at != list.len() {
-            return Err(VtkError::CountMismatch {
+            return Err(VtkError::Cell(CellError::CountMismatch {
                 file: self.cur.file.into(),
                 section,
                 what: format!("integers (the size in the CELLS header) for {first} cells"),
                 expected: at,
                 found: list.len(),
-            });
+            }));
         }
         self.grid.offsets = offsets;
         self.grid.connectivity = connectivity;
@@ -325,27 +328,27 @@ impl Parser<'_> {
             match o {
                 Some(o) if o >= previous && (i > 0 || o == 0) => starts.push(o),
                 _ => {
-                    return Err(VtkError::Invalid {
+                    return Err(VtkError::Cell(CellError::Invalid {
                         file: self.cur.file.into(),
                         section,
                         message: format!(
                             "offset {i} is {}: offsets must start at 0 and not decrease up to {nconn}",
                             offsets[i]
                         ),
-                    });
+                    }));
                 }
             }
         }
         if let Some(&last) = starts.last()
             && last != nconn
         {
-            return Err(VtkError::CountMismatch {
+            return Err(VtkError::Cell(CellError::CountMismatch {
                 file: self.cur.file.into(),
                 section,
                 what: "last offset (the CONNECTIVITY size)".into(),
                 expected: nconn,
                 found: last,
-            });
+            }));
         }
         self.grid.offsets = starts;
         self.cells = Some(Declared {
@@ -506,13 +509,13 @@ impl Parser<'_> {
             if self.mode != Attributes::Dataset {
                 let n = self.tuples("FIELD")?;
                 if ntuples != n {
-                    return Err(VtkError::CountMismatch {
+                    return Err(VtkError::Cell(CellError::CountMismatch {
                         file: self.cur.file.into(),
                         section,
                         what: format!("tuples (the {place} count)"),
                         expected: n,
                         found: ntuples,
-                    });
+                    }));
                 }
                 self.push_array(name, k, values, section);
             }
@@ -548,28 +551,29 @@ impl Parser<'_> {
     fn finish(&mut self) -> Result<(), VtkError> {
         let file = self.cur.file;
         let Some(points) = self.points else {
-            return Err(VtkError::Invalid {
+            return Err(VtkError::Cell(CellError::Invalid {
                 file: file.into(),
                 section: "UNSTRUCTURED_GRID".into(),
                 message: "no POINTS section".into(),
-            });
+            }));
         };
         let ncells = self.cells.map_or(0, |c| c.count);
-        let mismatch =
-            |d: Declared, keyword: &str, what: &str, expected: usize| VtkError::CountMismatch {
+        let mismatch = |d: Declared, keyword: &str, what: &str, expected: usize| {
+            VtkError::Cell(CellError::CountMismatch {
                 file: file.into(),
                 section: format!("line {}, {keyword}", d.line),
                 what: what.into(),
                 expected,
                 found: d.count,
-            };
+            })
+        };
         match (self.cells, self.cell_types) {
             (Some(c), None) if c.count > 0 => {
-                return Err(VtkError::Invalid {
+                return Err(VtkError::Cell(CellError::Invalid {
                     file: file.into(),
                     section: format!("line {}, CELLS", c.line),
                     message: "CELLS without CELL_TYPES".into(),
-                });
+                }));
             }
             (_, Some(t)) if t.count != ncells => {
                 return Err(mismatch(

@@ -14,6 +14,7 @@ use super::lex::Cursor;
 use crate::vtk::ImageGeometry;
 use crate::vtk::VtkError;
 use crate::vtk::numeric::Scalar;
+use tetray_mesh::cells::CellError;
 use tetray_mesh::cells::CellGrid;
 use tetray_mesh::cells::{add_cells, cell_count, image_points, point_count, rectilinear_points};
 
@@ -87,11 +88,13 @@ impl Structured {
                 let n = cur.count(&format!("the {keyword} count"))?;
                 let section = format!("line {line}, {keyword}");
                 let name = cur.word(&format!("the data type of {section}"))?;
-                let ty = Scalar::from_legacy_name(name).ok_or_else(|| VtkError::Unsupported {
-                    file: cur.file.into(),
-                    section: section.clone(),
-                    what: "data type",
-                    value: name.into(),
+                let ty = Scalar::from_legacy_name(name).ok_or_else(|| {
+                    VtkError::Cell(CellError::Unsupported {
+                        file: cur.file.into(),
+                        section: section.clone(),
+                        what: "data type",
+                        value: name.into(),
+                    })
                 })?;
                 self.coordinates[axis] = Some(cur.floats(ty, n, &section)?);
             }
@@ -102,10 +105,12 @@ impl Structured {
 
     /// The point and cell counts the dimensions give, checked.
     pub fn counts(&self, file: &str) -> Result<(usize, usize), VtkError> {
-        let (dims, line) = self.dims.ok_or_else(|| VtkError::Invalid {
-            file: file.into(),
-            section: self.kind.keyword().into(),
-            message: "no DIMENSIONS".into(),
+        let (dims, line) = self.dims.ok_or_else(|| {
+            VtkError::Cell(CellError::Invalid {
+                file: file.into(),
+                section: self.kind.keyword().into(),
+                message: "no DIMENSIONS".into(),
+            })
         })?;
         let n = point_count(dims, file, &format!("line {line}, DIMENSIONS"))?;
         Ok((n, cell_count(dims)))
@@ -131,10 +136,12 @@ impl Structured {
             return Ok(());
         };
         let keyword = self.kind.keyword();
-        let invalid = |message: String| VtkError::Invalid {
-            file: file.into(),
-            section: keyword.into(),
-            message,
+        let invalid = |message: String| {
+            VtkError::Cell(CellError::Invalid {
+                file: file.into(),
+                section: keyword.into(),
+                message,
+            })
         };
         if !grid.types.is_empty() {
             return Err(invalid("CELLS in a structured dataset".into()));
@@ -157,13 +164,13 @@ impl Structured {
                         return Err(invalid(format!("no {name}_COORDINATES")));
                     };
                     if c.len() != dims[a] {
-                        return Err(VtkError::CountMismatch {
+                        return Err(VtkError::Cell(CellError::CountMismatch {
                             file: file.into(),
                             section: format!("{name}_COORDINATES"),
                             what: format!("coordinates (DIMENSIONS on line {line})"),
                             expected: dims[a],
                             found: c.len(),
-                        });
+                        }));
                     }
                     axes.push(c.as_slice());
                 }
@@ -172,13 +179,13 @@ impl Structured {
             }
             Kind::StructuredGrid => {
                 if grid.points.len() != 3 * npoints {
-                    return Err(VtkError::CountMismatch {
+                    return Err(VtkError::Cell(CellError::CountMismatch {
                         file: file.into(),
                         section: grid.points_section.clone(),
                         what: format!("points (DIMENSIONS {dims:?} on line {line})"),
                         expected: npoints,
                         found: grid.points.len() / 3,
-                    });
+                    }));
                 }
             }
         }

@@ -12,6 +12,7 @@
 
 use std::borrow::Cow;
 use std::io::Read;
+use tetray_mesh::cells::CellError;
 
 use super::tree::{AppendedEncoding, Format, VtuDoc, XmlArray};
 use crate::vtk::VtkError;
@@ -27,11 +28,13 @@ pub(crate) struct ArrayDecoder<'a, 'd> {
 
 impl ArrayDecoder<'_, '_> {
     fn scalar(&self, a: &XmlArray, section: &str) -> Result<Scalar, VtkError> {
-        Scalar::from_vtu_name(&a.type_name).ok_or_else(|| VtkError::Unsupported {
-            file: self.file.into(),
-            section: section.into(),
-            what: "DataArray type",
-            value: a.type_name.clone(),
+        Scalar::from_vtu_name(&a.type_name).ok_or_else(|| {
+            VtkError::Cell(CellError::Unsupported {
+                file: self.file.into(),
+                section: section.into(),
+                what: "DataArray type",
+                value: a.type_name.clone(),
+            })
         })
     }
 
@@ -49,20 +52,22 @@ impl ArrayDecoder<'_, '_> {
     pub fn ints(&self, a: &XmlArray, section: &str) -> Result<Vec<i64>, VtkError> {
         let ty = self.scalar(a, section)?;
         if ty.is_float() {
-            return Err(VtkError::Invalid {
+            return Err(VtkError::Cell(CellError::Invalid {
                 file: self.file.into(),
                 section: section.into(),
                 message: format!("must have an integer type, found {}", ty.vtu_name()),
-            });
+            }));
         }
         if a.format == Format::Ascii {
             return self.ascii(a, ty, section, parse_i64);
         }
         let bytes = self.payload(a, ty, section)?;
-        decode_i64(ty, &bytes, self.doc.big_endian).map_err(|i| VtkError::Invalid {
-            file: self.file.into(),
-            section: section.into(),
-            message: format!("value {i} does not fit in a signed 64-bit integer"),
+        decode_i64(ty, &bytes, self.doc.big_endian).map_err(|i| {
+            VtkError::Cell(CellError::Invalid {
+                file: self.file.into(),
+                section: section.into(),
+                message: format!("value {i} does not fit in a signed 64-bit integer"),
+            })
         })
     }
 
@@ -114,16 +119,16 @@ impl ArrayDecoder<'_, '_> {
             }
             Some(ZLIB) => Cow::Owned(self.inflate(&mut source)?),
             Some(other) => {
-                return Err(VtkError::Unsupported {
+                return Err(VtkError::Cell(CellError::Unsupported {
                     file: self.file.into(),
                     section: section.into(),
                     what: "compressor",
                     value: other.into(),
-                });
+                }));
             }
         };
         if bytes.len() % ty.size() != 0 {
-            return Err(VtkError::Invalid {
+            return Err(VtkError::Cell(CellError::Invalid {
                 file: self.file.into(),
                 section: section.into(),
                 message: format!(
@@ -131,7 +136,7 @@ impl ArrayDecoder<'_, '_> {
                     bytes.len(),
                     ty.vtu_name()
                 ),
-            });
+            }));
         }
         Ok(bytes)
     }
@@ -147,11 +152,11 @@ impl ArrayDecoder<'_, '_> {
             Format::Ascii => 0,
         };
         let Some(appended) = &self.doc.appended else {
-            return Err(VtkError::Invalid {
+            return Err(VtkError::Cell(CellError::Invalid {
                 file: self.file.into(),
                 section: section.into(),
                 message: "an appended DataArray but the file has no <AppendedData>".into(),
-            });
+            }));
         };
         if offset > appended.data.len() {
             return Err(VtkError::Truncated {
@@ -234,11 +239,11 @@ struct Context<'s> {
 
 impl Context<'_> {
     fn invalid(&self, message: String) -> VtkError {
-        VtkError::Invalid {
+        VtkError::Cell(CellError::Invalid {
             file: self.file.into(),
             section: self.section.into(),
             message,
-        }
+        })
     }
 
     fn truncated(&self, expected: usize, found: usize) -> VtkError {

@@ -11,6 +11,7 @@ pub(crate) mod structured;
 pub(crate) mod tree;
 pub(crate) mod write;
 
+use tetray_mesh::cells::CellError;
 use tetray_mesh::cells::CellGrid;
 
 use crate::vtk::{ReadOptions, VtkError, VtkRead};
@@ -24,11 +25,11 @@ pub(crate) fn read_with(bytes: &[u8], name: &str, opts: &ReadOptions) -> Result<
 pub(crate) fn read_raw(bytes: &[u8], name: &str) -> Result<CellGrid, VtkError> {
     let mut doc = tree::parse(bytes, name)?;
     if doc.pieces.is_empty() {
-        return Err(VtkError::Invalid {
+        return Err(VtkError::Cell(CellError::Invalid {
             file: name.into(),
             section: format!("<{}>", doc.dataset),
             message: "no <Piece> element".into(),
-        });
+        }));
     }
     if doc.dataset == "UnstructuredGrid" {
         read::read_unstructured(&doc, name)

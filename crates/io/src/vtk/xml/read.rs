@@ -7,6 +7,7 @@ use super::tree::{VtuDoc, XmlArray, XmlPiece};
 use crate::vtk::VtkError;
 use crate::vtk::numeric::Scalar;
 use tetray_mesh::cells as polyhedron;
+use tetray_mesh::cells::CellError;
 use tetray_mesh::cells::merge_arrays as merge;
 use tetray_mesh::cells::{CellArray, CellGrid};
 
@@ -51,11 +52,11 @@ pub(crate) fn common_global_ids(pieces: &[XmlPiece]) -> Option<String> {
 }
 
 pub(crate) fn piece_error(file: &str, piece: &XmlPiece, k: usize, message: String) -> VtkError {
-    VtkError::Invalid {
+    VtkError::Cell(CellError::Invalid {
         file: file.into(),
         section: format!("line {}, Piece {k}", piece.line),
         message,
-    }
+    })
 }
 
 pub(crate) fn section(a: &XmlArray, k: usize, place: &str) -> String {
@@ -73,13 +74,13 @@ pub(crate) fn expect_count(
     if expected == found {
         return Ok(());
     }
-    Err(VtkError::CountMismatch {
+    Err(VtkError::Cell(CellError::CountMismatch {
         file: file.into(),
         section: section.into(),
         what: what.into(),
         expected,
         found,
-    })
+    }))
 }
 
 pub(crate) fn read_points(
@@ -101,11 +102,11 @@ pub(crate) fn read_points(
     };
     let section = section(a, k, "Points");
     if a.components != 3 {
-        return Err(VtkError::Invalid {
+        return Err(VtkError::Cell(CellError::Invalid {
             file: d.file.into(),
             section,
             message: format!("points have {} components, not 3", a.components),
-        });
+        }));
     }
     let xyz = d.floats(a, &section)?;
     let what = format!(
@@ -171,7 +172,7 @@ fn read_cells(
             .ok()
             .filter(|&e| e >= previous && e <= connectivity.len());
         let Some(end) = end else {
-            return Err(VtkError::Invalid {
+            return Err(VtkError::Cell(CellError::Invalid {
                 file: d.file.into(),
                 section: offsets_section,
                 message: format!(
@@ -179,7 +180,7 @@ fn read_cells(
                     offsets[c],
                     connectivity.len()
                 ),
-            });
+            }));
         };
         previous = end;
     }
@@ -192,12 +193,12 @@ fn read_cells(
         i < 0 || i as u64 >= piece.npoints as u64
     });
     if let Some(at) = bad {
-        return Err(VtkError::BadIndex {
+        return Err(VtkError::Cell(CellError::BadIndex {
             file: d.file.into(),
             cell: cells_before + offsets.partition_point(|&end| end as usize <= at),
             index: connectivity[at],
             npoints: piece.npoints,
-        });
+        }));
     }
     let start = grid.connectivity.len();
     if grid.offsets.is_empty() {
@@ -263,20 +264,22 @@ fn read_polyhedra(
                 .into(),
         ));
     };
-    let per_cell = per_cell.map_err(|(c, message)| VtkError::BadPolyhedron {
-        file: d.file.into(),
-        cell: cells_before + c,
-        message,
+    let per_cell = per_cell.map_err(|(c, message)| {
+        VtkError::Cell(CellError::BadPolyhedron {
+            file: d.file.into(),
+            cell: cells_before + c,
+            message,
+        })
     })?;
     for (c, mut faces) in per_cell {
         for index in faces.iter_mut().flatten() {
             if *index < 0 || *index as u64 >= piece.npoints as u64 {
-                return Err(VtkError::BadIndex {
+                return Err(VtkError::Cell(CellError::BadIndex {
                     file: d.file.into(),
                     cell: cells_before + c,
                     index: *index,
                     npoints: piece.npoints,
-                });
+                }));
             }
             *index += points_before as i64;
         }

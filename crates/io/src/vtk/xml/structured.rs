@@ -5,6 +5,7 @@
 //! `WholeExtent`); several Pieces are welded on their shared faces.
 
 use super::data::ArrayDecoder;
+use tetray_mesh::cells::CellError;
 use tetray_mesh::cells::CellGrid;
 use tetray_mesh::cells::merge_arrays as merge;
 use tetray_mesh::cells::weld;
@@ -131,7 +132,7 @@ fn coordinates(
         let place = section(a, k, "Coordinates");
         let values = d.floats(a, &place)?;
         if values.len() != dims[axis] {
-            return Err(VtkError::CountMismatch {
+            return Err(VtkError::Cell(CellError::CountMismatch {
                 file: d.file.into(),
                 section: place,
                 what: format!(
@@ -141,7 +142,7 @@ fn coordinates(
                 ),
                 expected: dims[axis],
                 found: values.len(),
-            });
+            }));
         }
         axes.push(values);
     }
@@ -165,13 +166,13 @@ impl ImageFrame {
                 .split_ascii_whitespace()
                 .map(|t| t.parse().ok().filter(|v: &f64| v.is_finite()))
                 .collect();
-            values
-                .filter(|v| v.len() == default.len())
-                .ok_or_else(|| VtkError::Invalid {
+            values.filter(|v| v.len() == default.len()).ok_or_else(|| {
+                VtkError::Cell(CellError::Invalid {
                     file: file.into(),
                     section: format!("{element} {key}"),
                     message: format!("\"{text}\" is not {} finite numbers", default.len()),
                 })
+            })
         };
         let identity = [1., 0., 0., 0., 1., 0., 0., 0., 1.];
         let origin = numbers("Origin", &[0.; 3])?;
@@ -187,10 +188,12 @@ impl ImageFrame {
 
 /// Parses an extent `x0 x1 y0 y1 z0 z1` (inclusive point index ranges).
 fn parse_extent(text: &str, file: &str, section: &str) -> Result<[i64; 6], VtkError> {
-    let invalid = |message: String| VtkError::Invalid {
-        file: file.into(),
-        section: section.into(),
-        message,
+    let invalid = |message: String| {
+        VtkError::Cell(CellError::Invalid {
+            file: file.into(),
+            section: section.into(),
+            message,
+        })
     };
     let values: Vec<i64> = text
         .split_ascii_whitespace()

@@ -8,6 +8,7 @@
 
 use quick_xml::Reader;
 use quick_xml::events::{BytesStart, Event};
+use tetray_mesh::cells::CellError;
 
 use crate::vtk::VtkError;
 
@@ -331,11 +332,13 @@ impl<'a> Builder<'a> {
     fn vtk_file(&mut self, e: &BytesStart<'_>, at: usize) -> Result<(), VtkError> {
         self.seen_root = true;
         let section = format!("line {}, <VTKFile>", self.lines.at(at));
-        let unsupported = |what: &'static str, value: &str| VtkError::Unsupported {
-            file: self.file.into(),
-            section: section.clone(),
-            what,
-            value: value.into(),
+        let unsupported = |what: &'static str, value: &str| {
+            VtkError::Cell(CellError::Unsupported {
+                file: self.file.into(),
+                section: section.clone(),
+                what,
+                value: value.into(),
+            })
         };
         for (key, value) in self.attributes(e, at)? {
             match key.as_str() {
@@ -416,12 +419,12 @@ impl<'a> Builder<'a> {
                 return Err(self.xml_error(at, "an appended DataArray without an offset".into()));
             }
             (other, _) => {
-                return Err(VtkError::Unsupported {
+                return Err(VtkError::Cell(CellError::Unsupported {
                     file: self.file.into(),
                     section: format!("line {line}, DataArray"),
                     what: "DataArray format",
                     value: other.into(),
-                });
+                }));
             }
         };
         Ok(array)
@@ -478,12 +481,12 @@ impl<'a> Builder<'a> {
                     "raw" => AppendedEncoding::Raw,
                     "base64" => AppendedEncoding::Base64,
                     other => {
-                        return Err(VtkError::Unsupported {
+                        return Err(VtkError::Cell(CellError::Unsupported {
                             file: self.file.into(),
                             section: format!("line {}, <AppendedData>", self.lines.at(at)),
                             what: "AppendedData encoding",
                             value: other.into(),
-                        });
+                        }));
                     }
                 };
             }
