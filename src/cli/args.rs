@@ -331,15 +331,23 @@ pub struct OutputArgs {
     pub background: Vec3,
 }
 
-/// `tetray render`.
+/// What every rendering command takes: the data, the field, transfer
+/// function and integrator, and the camera.
 #[derive(Debug, Clone, Args)]
-pub struct RenderArgs {
+pub struct FrameFlags {
     #[command(flatten)]
     pub mesh: MeshArgs,
     #[command(flatten)]
     pub integrator: IntegratorArgs,
     #[command(flatten)]
     pub camera: CameraArgs,
+}
+
+/// `tetray render`.
+#[derive(Debug, Clone, Args)]
+pub struct RenderArgs {
+    #[command(flatten)]
+    pub frame: FrameFlags,
     #[command(flatten)]
     pub output: OutputArgs,
     #[command(flatten)]

@@ -1,6 +1,6 @@
 //! `tetray bench`: frame times over an orbit of the camera, as JSON.
 
-use super::args::{CameraArgs, IntegratorArgs, MeshArgs, WalkArgs, parse_finite, parse_size};
+use super::args::{FrameFlags, WalkArgs, parse_finite, parse_size};
 use super::{render, scene};
 use clap::Args;
 use serde::Serialize;
@@ -10,11 +10,7 @@ use tetray_engine::Engine;
 #[derive(Debug, Clone, Args)]
 pub struct BenchArgs {
     #[command(flatten)]
-    pub mesh: MeshArgs,
-    #[command(flatten)]
-    pub integrator: IntegratorArgs,
-    #[command(flatten)]
-    pub camera: CameraArgs,
+    pub frame: FrameFlags,
     #[command(flatten)]
     pub walk: WalkArgs,
     /// Image size in pixels.
@@ -98,9 +94,7 @@ struct ProjectionJson {
 pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     scene::configure_threads(args.walk.threads)?;
     let frame = scene::FrameArgs {
-        mesh: &args.mesh,
-        integrator: &args.integrator,
-        camera: &args.camera,
+        flags: &args.frame,
         walk: &args.walk,
         size: args.size,
     };

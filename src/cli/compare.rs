@@ -10,20 +10,13 @@ use glam::Vec3;
 use tetray_boundary_bvh::BuildPreset;
 use tetray_project::SortKind;
 
-use super::args::{
-    CameraArgs, IntegratorArgs, MeshArgs, RendererArg, WalkArgs, parse_bvh_preset, parse_rgb,
-    parse_size,
-};
+use super::args::{FrameFlags, RendererArg, WalkArgs, parse_bvh_preset, parse_rgb, parse_size};
 use super::scene;
 
 #[derive(Debug, Clone, Args)]
 pub struct CompareArgs {
     #[command(flatten)]
-    pub mesh: MeshArgs,
-    #[command(flatten)]
-    pub integrator: IntegratorArgs,
-    #[command(flatten)]
-    pub camera: CameraArgs,
+    pub frame: FrameFlags,
     /// Image size in pixels.
     #[arg(long, value_name = "WxH", value_parser = parse_size, default_value = "256x256")]
     pub size: (u32, u32),
@@ -66,26 +59,33 @@ pub struct CompareArgs {
     pub distributed: super::args::DistributedArgs,
 }
 
+impl CompareArgs {
+    /// The walk of every combination: the CPU ray caster's options (the
+    /// reference's), no early termination, so every method integrates every
+    /// ray to its end.
+    pub fn walk(&self) -> WalkArgs {
+        WalkArgs {
+            renderer: RendererArg::Cpu,
+            early_termination: 1.0,
+            max_steps: None,
+            threads: self.threads,
+            bvh_preset: Some(self.bvh_preset),
+            sort: SortKind::Mpvonc,
+            no_adaptive_tf: self.no_adaptive_tf,
+        }
+    }
+}
+
 pub fn run(args: &CompareArgs) -> anyhow::Result<()> {
     scene::configure_threads(args.threads)?;
     let log = |line: String| println!("{line}");
-    let walk = WalkArgs {
-        renderer: RendererArg::Cpu,
-        early_termination: 1.0,
-        max_steps: None,
-        threads: args.threads,
-        bvh_preset: Some(args.bvh_preset),
-        sort: SortKind::Mpvonc,
-        no_adaptive_tf: args.no_adaptive_tf,
-    };
+    let walk = args.walk();
     let frame = scene::FrameArgs {
-        mesh: &args.mesh,
-        integrator: &args.integrator,
-        camera: &args.camera,
+        flags: &args.frame,
         walk: &walk,
         size: args.size,
     };
-    let mut options = frame.options(scene::read_tf(&args.integrator)?);
+    let mut options = frame.options(scene::read_tf(&args.frame.integrator)?);
     // Shear-warp needs the regular grid of image data besides the
     // tetrahedra the others walk.
     if args
@@ -95,7 +95,7 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<()> {
     {
         options.representation = tetray_engine::Representation::Both;
     }
-    let mut setup = scene::prepare_with(&args.mesh, &options, &log)?;
+    let mut setup = scene::prepare_with(&args.frame.mesh, &options, &log)?;
     let run = tetray_compare::RunOptions {
         size: args.size,
         frames: args.frames,

@@ -21,17 +21,8 @@ use tetray_distributed::mpi::traits::*;
 use tetray_distributed::{DistributedFrame, FrameReport, Part, prepare_part, render_setup};
 use tetray_raycast::RenderOptions;
 
-use super::args::{CameraArgs, IntegratorArgs, MeshArgs, RendererArg, WalkArgs};
+use super::args::{RendererArg, WalkArgs};
 use super::scene;
-
-/// What `prepare` takes, borrowed from any of the three commands.
-struct FrameInput<'a> {
-    mesh: &'a MeshArgs,
-    integrator: &'a IntegratorArgs,
-    camera: &'a CameraArgs,
-    walk: &'a WalkArgs,
-    size: (u32, u32),
-}
 
 /// Runs `work` on the world communicator; an error on any rank is printed
 /// with the rank and aborts every rank (a rank left waiting in a
@@ -57,30 +48,27 @@ fn with_world(work: impl FnOnce(&SimpleCommunicator) -> anyhow::Result<()>) -> a
 /// engine's setup of the part, from what the ranks agree on). Progress
 /// lines go to stdout, or to stderr with `quiet` (the bench's stdout holds
 /// only its JSON); rank 0 alone writes them.
-fn prepare<C: Communicator>(comm: &C, input: &FrameInput<'_>, quiet: bool) -> anyhow::Result<Part> {
+fn prepare<C: Communicator>(
+    comm: &C,
+    frame: scene::FrameArgs<'_>,
+    quiet: bool,
+) -> anyhow::Result<Part> {
     let rank0 = comm.rank() == 0;
     let log = |line: String| match (rank0, quiet) {
         (false, _) => {}
         (true, false) => println!("{line}"),
         (true, true) => eprintln!("{line}"),
     };
-    if !matches!(input.walk.renderer, RendererArg::Auto | RendererArg::Cpu) {
+    if !matches!(frame.walk.renderer, RendererArg::Auto | RendererArg::Cpu) {
         bail!("a distributed render uses the CPU ray caster: --renderer auto or cpu");
     }
-    if input.walk.early_termination != 1.0 {
+    if frame.walk.early_termination != 1.0 {
         bail!(
             "a distributed render does not terminate rays early (a rank cannot know the light \
              in front of its fragments): leave --early-termination at 1"
         );
     }
-    let frame = scene::FrameArgs {
-        mesh: input.mesh,
-        integrator: input.integrator,
-        camera: input.camera,
-        walk: input.walk,
-        size: input.size,
-    };
-    let options = frame.options(scene::read_tf(input.integrator)?);
+    let options = frame.options(scene::read_tf(&frame.flags.integrator)?);
     let warn = |line: String| {
         if rank0 {
             scene::warn(line);
@@ -90,7 +78,12 @@ fn prepare<C: Communicator>(comm: &C, input: &FrameInput<'_>, quiet: bool) -> an
         info: &log,
         warn: &warn,
     };
-    Ok(prepare_part(comm, input.mesh.source()?, &options, log)?)
+    Ok(prepare_part(
+        comm,
+        frame.flags.mesh.source()?,
+        &options,
+        log,
+    )?)
 }
 
 fn render_options(walk: &WalkArgs, (width, height): (u32, u32)) -> RenderOptions {
@@ -119,14 +112,12 @@ pub fn render(args: &super::args::RenderArgs) -> anyhow::Result<()> {
     let format = super::render::image_format(output)?;
     scene::configure_threads(args.walk.threads)?;
     with_world(|world| {
-        let input = FrameInput {
-            mesh: &args.mesh,
-            integrator: &args.integrator,
-            camera: &args.camera,
+        let input = scene::FrameArgs {
+            flags: &args.frame,
             walk: &args.walk,
             size: args.output.size,
         };
-        let part = prepare(world, &input, false)?;
+        let part = prepare(world, input, false)?;
         let opts = render_options(&args.walk, args.output.size);
         let start = Instant::now();
         let Some(frame) = frame(
@@ -193,14 +184,12 @@ struct BenchJson {
 pub fn bench(args: &super::bench::BenchArgs) -> anyhow::Result<()> {
     scene::configure_threads(args.walk.threads)?;
     with_world(|world| {
-        let input = FrameInput {
-            mesh: &args.mesh,
-            integrator: &args.integrator,
-            camera: &args.camera,
+        let input = scene::FrameArgs {
+            flags: &args.frame,
             walk: &args.walk,
             size: args.size,
         };
-        let part = prepare(world, &input, true)?;
+        let part = prepare(world, input, true)?;
         let opts = render_options(&args.walk, args.size);
         let tile = args.distributed.tile;
         let mut camera = part.setup.camera;
@@ -282,24 +271,14 @@ struct CompareJson {
 /// single-process CPU render of the whole mesh (rank 0 renders it too).
 pub fn compare(args: &super::compare::CompareArgs) -> anyhow::Result<()> {
     scene::configure_threads(args.threads)?;
-    let walk = WalkArgs {
-        renderer: RendererArg::Cpu,
-        early_termination: 1.0,
-        max_steps: None,
-        threads: args.threads,
-        bvh_preset: Some(args.bvh_preset),
-        sort: tetray_project::SortKind::Mpvonc,
-        no_adaptive_tf: false,
-    };
+    let walk = args.walk();
     with_world(|world| {
-        let input = FrameInput {
-            mesh: &args.mesh,
-            integrator: &args.integrator,
-            camera: &args.camera,
+        let input = scene::FrameArgs {
+            flags: &args.frame,
             walk: &walk,
             size: args.size,
         };
-        let part = prepare(world, &input, false)?;
+        let part = prepare(world, input, false)?;
         let opts = render_options(&walk, args.size);
         let start = Instant::now();
         let out = frame(
@@ -313,9 +292,7 @@ pub fn compare(args: &super::compare::CompareArgs) -> anyhow::Result<()> {
         let Some(out) = out else { return Ok(()) };
         println!("{}", out.report.describe());
         let frame_args = scene::FrameArgs {
-            mesh: &args.mesh,
-            integrator: &args.integrator,
-            camera: &args.camera,
+            flags: &args.frame,
             walk: &walk,
             size: args.size,
         };

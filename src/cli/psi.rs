@@ -3,7 +3,7 @@
 
 use clap::Args;
 use serde::Serialize;
-use tetray_integrate::{PsiTable, psi};
+use tetray_integrate::PsiTable;
 
 use super::args::parse_unit_interval;
 
@@ -39,30 +39,19 @@ struct PsiJson {
 
 pub fn run(args: &PsiArgs) -> anyhow::Result<()> {
     let table = PsiTable::shared(args.size)?;
-    let tau_d = |gamma: f32| {
-        let g = f64::from(gamma);
-        if g >= 1.0 {
-            f64::INFINITY
-        } else {
-            g / (1.0 - g)
-        }
-    };
-    let (a, b) = (tau_d(args.gamma_b), tau_d(args.gamma_f));
-    let exact = psi::psi(a, b);
-    let bilinear = table.lookup_gamma(args.gamma_b, args.gamma_f);
-    let nearest = table.lookup_gamma_nearest(args.gamma_b, args.gamma_f);
+    let at = table.at_gamma(args.gamma_b, args.gamma_f);
     let json = PsiJson {
         gamma_b: args.gamma_b,
         gamma_f: args.gamma_f,
-        tau_b_d: a,
-        tau_f_d: b,
+        tau_b_d: at.tau_b_d,
+        tau_f_d: at.tau_f_d,
         size: table.size(),
         spacing: table.spacing().name(),
-        table_bilinear: bilinear,
-        table_nearest: nearest,
-        f64: exact,
-        error_bilinear: (f64::from(bilinear) - exact).abs(),
-        error_nearest: (f64::from(nearest) - exact).abs(),
+        table_bilinear: at.bilinear,
+        table_nearest: at.nearest,
+        f64: at.exact,
+        error_bilinear: at.error_bilinear(),
+        error_nearest: at.error_nearest(),
     };
     println!("{}", serde_json::to_string_pretty(&json)?);
     Ok(())

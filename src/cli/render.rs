@@ -30,9 +30,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     scene::configure_threads(args.walk.threads)?;
     let size = args.output.size;
     let frame = scene::FrameArgs {
-        mesh: &args.mesh,
-        integrator: &args.integrator,
-        camera: &args.camera,
+        flags: &args.frame,
         walk: &args.walk,
         size,
     };

@@ -8,7 +8,7 @@ use anyhow::Context;
 
 pub use tetray_engine::{MeshInput, Setup, plural};
 
-use super::args::{CameraArgs, IntegratorArgs, MeshArgs, WalkArgs};
+use super::args::{FrameFlags, IntegratorArgs, MeshArgs, WalkArgs};
 
 /// Loads the mesh the flags name, or the embedded default, and gives back
 /// what the allocator kept of the load's temporaries (for commands that go
@@ -22,9 +22,7 @@ pub fn load_mesh(args: &MeshArgs) -> anyhow::Result<MeshInput> {
 /// What [`prepare`] makes a frame of.
 #[derive(Clone, Copy)]
 pub struct FrameArgs<'a> {
-    pub mesh: &'a MeshArgs,
-    pub integrator: &'a IntegratorArgs,
-    pub camera: &'a CameraArgs,
+    pub flags: &'a FrameFlags,
     pub walk: &'a WalkArgs,
     pub size: (u32, u32),
 }
@@ -34,8 +32,8 @@ impl FrameArgs<'_> {
     /// content), for the renderer `--renderer` names.
     pub fn options(&self, tf_text: Option<String>) -> tetray_engine::FrameOptions {
         tetray_engine::FrameOptions {
-            integrator: self.integrator.choice(tf_text),
-            camera: self.camera.options(),
+            integrator: self.flags.integrator.choice(tf_text),
+            camera: self.flags.camera.options(),
             bvh_preset: self.walk.bvh_preset,
             size: self.size,
             representation: tetray_engine::Representation::for_renderer(self.walk.renderer.into()),
@@ -64,8 +62,8 @@ pub fn read_tf(integrator: &IntegratorArgs) -> anyhow::Result<Option<String>> {
 /// Loads the mesh and makes the frame's setup through the engine, reporting
 /// each step through `log` and warnings on stderr.
 pub fn prepare(frame: FrameArgs<'_>, log: &dyn Fn(String)) -> anyhow::Result<Setup> {
-    let options = frame.options(read_tf(frame.integrator)?);
-    prepare_with(frame.mesh, &options, log)
+    let options = frame.options(read_tf(&frame.flags.integrator)?);
+    prepare_with(&frame.flags.mesh, &options, log)
 }
 
 /// [`prepare`] with the engine's options already made.

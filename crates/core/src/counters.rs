@@ -23,6 +23,20 @@ pub struct WalkCounters {
 }
 
 impl WalkCounters {
+    /// The counters of a renderer that casts no rays of its own (the
+    /// projection, shear-warp): every pixel of `image` a ray, the lit ones
+    /// (alpha above 0) the rays that hit, with the segments and steps it
+    /// counted (slabs composited, cells drawn).
+    pub fn of_image(image: &crate::Image, segments: u64, steps: u64) -> WalkCounters {
+        WalkCounters {
+            rays: u64::from(image.width) * u64::from(image.height),
+            rays_hit: image.rgba.iter().filter(|p| p[3] > 0.0).count() as u64,
+            segments,
+            steps,
+            ..WalkCounters::default()
+        }
+    }
+
     /// The sum of two frames' (or two tiles') counters.
     #[must_use]
     pub fn merge(self, other: WalkCounters) -> WalkCounters {

@@ -81,6 +81,18 @@ impl EngineError {
     }
 }
 
+/// An error and its sources on one line, "what: why: why that".
+pub fn error_chain(e: &dyn std::error::Error) -> String {
+    let mut text = e.to_string();
+    let mut source = e.source();
+    while let Some(s) = source {
+        text.push_str(": ");
+        text.push_str(&s.to_string());
+        source = s.source();
+    }
+    text
+}
+
 /// `anyhow`-like context for this crate's results.
 pub(crate) trait Context<T> {
     fn context(self, context: impl Into<String>) -> Result<T, EngineError>;

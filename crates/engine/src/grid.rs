@@ -196,18 +196,12 @@ pub(crate) fn render(
         skip_empty: true,
     };
     let out = sw.render(camera, &options).context("shear-warp")?;
-    let rays_hit = out.image.rgba.iter().filter(|p| p[3] > 0.0).count() as u64;
     Ok(Frame {
-        image: out.image,
         stats: FrameStats {
-            counters: WalkCounters {
-                rays: u64::from(width) * u64::from(height),
-                rays_hit,
-                segments: out.stats.slabs_composited,
-                ..WalkCounters::default()
-            },
+            counters: WalkCounters::of_image(&out.image, out.stats.slabs_composited, 0),
             elapsed: out.stats.elapsed,
             ..FrameStats::default()
         },
+        image: out.image,
     })
 }

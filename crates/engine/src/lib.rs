@@ -30,7 +30,7 @@ mod source;
 pub mod tf;
 
 pub use camera::{build_camera, warn_if_inside};
-pub use error::EngineError;
+pub use error::{EngineError, error_chain};
 pub use fields::SOLID;
 pub use frame::{Frame, FrameStats};
 pub use measure::{Measured, Timing, measure, median};

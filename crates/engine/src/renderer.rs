@@ -7,7 +7,7 @@ use tetray_gpu::{GpuContext, GpuIntegrator, GpuRaycaster, GpuRenderOptions, GpuS
 use tetray_project::{ProjectOptions, Projection};
 use tetray_raycast::{RenderOptions, render_scalar_with_progress};
 
-use crate::error::{Context, EngineError, bail};
+use crate::error::{Context, EngineError, bail, error_chain};
 use crate::frame::{Frame, FrameStats};
 use crate::options::{RendererChoice, WalkOptions};
 use crate::setup::Setup;
@@ -94,7 +94,7 @@ impl Engine {
                         Ok(Engine::Cpu)
                     }
                     Err(e) => {
-                        log(format!("renderer: cpu ({})", chain(&e)));
+                        log(format!("renderer: cpu ({})", error_chain(&e)));
                         Ok(Engine::Cpu)
                     }
                 }
@@ -259,35 +259,16 @@ impl Engine {
                     .render(&p.ctx, &p.integrator, camera, &options)
                     .context("projecting")?;
                 let s = out.stats;
-                let rays_hit = out.image.rgba.iter().filter(|p| p[3] > 0.0).count() as u64;
                 Ok(Frame {
-                    image: out.image,
                     stats: FrameStats {
-                        counters: WalkCounters {
-                            rays: u64::from(width) * u64::from(height),
-                            rays_hit,
-                            segments: s.segments,
-                            steps: s.draws as u64,
-                            ..WalkCounters::default()
-                        },
+                        counters: WalkCounters::of_image(&out.image, s.segments, s.draws as u64),
                         elapsed: s.sort_time + s.expand_time + s.draw_time,
                         project: Some(s),
                         ..FrameStats::default()
                     },
+                    image: out.image,
                 })
             }
         }
     }
-}
-
-/// An error and its sources on one line.
-fn chain(e: &dyn std::error::Error) -> String {
-    let mut text = e.to_string();
-    let mut source = e.source();
-    while let Some(s) = source {
-        text.push_str(": ");
-        text.push_str(&s.to_string());
-        source = s.source();
-    }
-    text
 }

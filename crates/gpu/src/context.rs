@@ -97,6 +97,23 @@ impl GpuContext {
         })
     }
 
+    /// Submits `commands` and waits until the device has run them; the
+    /// wall time from submission to completion.
+    pub fn submit_and_wait(
+        &self,
+        commands: wgpu::CommandBuffer,
+    ) -> Result<std::time::Duration, GpuError> {
+        let start = std::time::Instant::now();
+        let submission = self.queue.submit([commands]);
+        self.device
+            .poll(wgpu::PollType::Wait {
+                submission_index: Some(submission),
+                timeout: None,
+            })
+            .map_err(|e| GpuError::Driver(e.to_string()))?;
+        Ok(start.elapsed())
+    }
+
     /// "name (backend, device type)", for reports.
     pub fn adapter_name(&self) -> String {
         format!(
@@ -108,5 +125,29 @@ impl GpuContext {
     /// Whether the adapter is a CPU implementation (lavapipe, WARP).
     pub fn is_cpu(&self) -> bool {
         self.info.device_type == wgpu::DeviceType::Cpu
+    }
+}
+
+/// The descriptor of a 2-D texture of `width x height` texels, one mip
+/// level, one sample.
+pub fn texture_2d(
+    label: &str,
+    (width, height): (u32, u32),
+    format: wgpu::TextureFormat,
+    usage: wgpu::TextureUsages,
+) -> wgpu::TextureDescriptor<'_> {
+    wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage,
+        view_formats: &[],
     }
 }

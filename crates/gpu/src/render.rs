@@ -3,7 +3,7 @@
 //! and the counters.
 
 use std::ops::Range;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use tetray_core::{Camera, Image, WalkCounters};
 use wgpu::util::DeviceExt;
@@ -190,15 +190,7 @@ impl GpuRaycaster {
         let image_read = readback_buffer(ctx, "image readback", image_bytes);
         let stats_read = target.encode_stats_readback(ctx, &mut encoder);
         encoder.copy_buffer_to_buffer(target.image(), 0, &image_read, 0, image_bytes);
-        let start = Instant::now();
-        let submission = ctx.queue.submit([encoder.finish()]);
-        device
-            .poll(wgpu::PollType::Wait {
-                submission_index: Some(submission),
-                timeout: None,
-            })
-            .map_err(|e| GpuError::Driver(e.to_string()))?;
-        let wall_time = start.elapsed();
+        let wall_time = ctx.submit_and_wait(encoder.finish())?;
         if let Some(error) = pollster::block_on(scope.pop()) {
             return Err(GpuError::Driver(error.to_string()));
         }

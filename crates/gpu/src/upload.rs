@@ -418,24 +418,17 @@ fn pack_intervals(knots: &tetray_integrate::TfKnots, opacity: bool) -> Vec<[f32;
     out
 }
 
-/// An r32float texture of the Psi table (row = gamma_f, column = gamma_b).
-fn psi_texture(ctx: &GpuContext, size: u32, values: &[f32]) -> wgpu::TextureView {
+/// An r32float texture of the Psi table (row = gamma_f, column = gamma_b),
+/// `size` texels a side.
+pub fn psi_texture(ctx: &GpuContext, size: u32, values: &[f32]) -> wgpu::TextureView {
     let texture = ctx.device.create_texture_with_data(
         &ctx.queue,
-        &wgpu::TextureDescriptor {
-            label: Some("psi table"),
-            size: wgpu::Extent3d {
-                width: size,
-                height: size,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::R32Float,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING,
-            view_formats: &[],
-        },
+        &crate::texture_2d(
+            "psi table",
+            (size, size),
+            wgpu::TextureFormat::R32Float,
+            wgpu::TextureUsages::TEXTURE_BINDING,
+        ),
         wgpu::util::TextureDataOrder::LayerMajor,
         bytemuck::cast_slice(values),
     );

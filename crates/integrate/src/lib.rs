@@ -45,7 +45,7 @@ pub use error::IntegrateError;
 pub use kernels::{KernelVisitor, RIEMANN_MAX_SAMPLES, SegmentKernel, Typed};
 pub use knots::{KnotSample, Material, OpacityMode, Piece, TfKnots};
 pub use preintegrated::PreintegrationTable;
-pub use psi::{GammaSpacing, PsiTable};
+pub use psi::{GammaSpacing, PsiAt, PsiTable};
 pub use scalar::{IntegratorOptions, ScalarIntegrator};
 pub use segment::{OpacityParams, SampledSegment, SegmentLight, SegmentParams, Weights};
 pub use tetray_core::method::{Method, Model, UnknownMethod};

@@ -150,6 +150,37 @@ pub struct PsiTable {
     last_cell: u32,
 }
 
+/// The table's lookups at one (gamma_b, gamma_f) beside Psi in f64.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PsiAt {
+    /// tau D of each end, from gamma = tau D / (1 + tau D).
+    pub tau_b_d: f64,
+    pub tau_f_d: f64,
+    pub bilinear: f32,
+    pub nearest: f32,
+    pub exact: f64,
+}
+
+impl PsiAt {
+    pub fn error_bilinear(&self) -> f64 {
+        (f64::from(self.bilinear) - self.exact).abs()
+    }
+
+    pub fn error_nearest(&self) -> f64 {
+        (f64::from(self.nearest) - self.exact).abs()
+    }
+}
+
+/// tau D of a gamma (infinite at 1).
+fn tau_d_of(gamma: f32) -> f64 {
+    let g = f64::from(gamma);
+    if g >= 1.0 {
+        f64::INFINITY
+    } else {
+        g / (1.0 - g)
+    }
+}
+
 impl PsiTable {
     /// Computes the table in f64 (in parallel) and rounds it to f32.
     pub fn build(size: usize, spacing: GammaSpacing) -> Result<PsiTable, IntegrateError> {
@@ -287,6 +318,19 @@ impl PsiTable {
     }
 
     /// Bilinear lookup by `(gamma_b, gamma_f)` in `[0, 1]`.
+    /// The bilinear and nearest lookups at `(gamma_back, gamma_front)` and
+    /// Psi there in f64 (what `tetray psi` prints).
+    pub fn at_gamma(&self, gamma_back: f32, gamma_front: f32) -> PsiAt {
+        let (tau_b_d, tau_f_d) = (tau_d_of(gamma_back), tau_d_of(gamma_front));
+        PsiAt {
+            tau_b_d,
+            tau_f_d,
+            bilinear: self.lookup_gamma(gamma_back, gamma_front),
+            nearest: self.lookup_gamma_nearest(gamma_back, gamma_front),
+            exact: psi(tau_b_d, tau_f_d),
+        }
+    }
+
     pub fn lookup_gamma(&self, gamma_back: f32, gamma_front: f32) -> f32 {
         self.bilinear(
             self.spacing.coord_of_gamma(gamma_back),

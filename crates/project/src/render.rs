@@ -3,7 +3,7 @@
 //! target with premultiplied back-to-front "over" blending, timed with
 //! timestamp queries where the adapter has them, and read back.
 
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use tetray_core::Image;
 use tetray_gpu::readback::{PassTimestamps, read_buffer, readback_buffer};
@@ -279,20 +279,12 @@ impl GpuProjector {
                 entry(5, &stats),
             ],
         });
-        let target = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("project target"),
-            size: wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: self.format,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[],
-        });
+        let target = device.create_texture(&tetray_gpu::texture_2d(
+            "project target",
+            (width, height),
+            self.format,
+            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+        ));
         let target_view = target.create_view(&Default::default());
         let timestamps = ctx
             .timestamps
@@ -348,15 +340,7 @@ impl GpuProjector {
         );
         let stats_read = readback_buffer(ctx, "project stats readback", (STAT_COUNT * 4) as u64);
         encoder.copy_buffer_to_buffer(&stats, 0, &stats_read, 0, (STAT_COUNT * 4) as u64);
-        let start = Instant::now();
-        let submission = ctx.queue.submit([encoder.finish()]);
-        device
-            .poll(wgpu::PollType::Wait {
-                submission_index: Some(submission),
-                timeout: None,
-            })
-            .map_err(|e| ProjectError::Driver(e.to_string()))?;
-        let wall_time = start.elapsed();
+        let wall_time = ctx.submit_and_wait(encoder.finish())?;
         if let Some(error) = pollster::block_on(scope.pop()) {
             return Err(ProjectError::Driver(error.to_string()));
         }

@@ -5,7 +5,7 @@ use glam::Vec3;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use tetray_engine::Setup;
-use tetray_integrate::{Method, Model, PsiTable, SegmentParams, psi as psi_f64};
+use tetray_integrate::{Method, Model, PsiTable, SegmentParams};
 
 use crate::{guard, to_py, value_error};
 
@@ -113,30 +113,19 @@ pub fn psi<'py>(
         }
     }
     let table = guard(|| PsiTable::shared(size).map_err(|e| value_error(e.to_string())))?;
-    let tau_d = |gamma: f32| {
-        let g = f64::from(gamma);
-        if g >= 1.0 {
-            f64::INFINITY
-        } else {
-            g / (1.0 - g)
-        }
-    };
-    let (a, b) = (tau_d(gamma_b), tau_d(gamma_f));
-    let exact = psi_f64::psi(a, b);
-    let bilinear = table.lookup_gamma(gamma_b, gamma_f);
-    let nearest = table.lookup_gamma_nearest(gamma_b, gamma_f);
+    let at = table.at_gamma(gamma_b, gamma_f);
     let d = PyDict::new(py);
     d.set_item("gamma_b", gamma_b)?;
     d.set_item("gamma_f", gamma_f)?;
-    d.set_item("tau_b_d", a)?;
-    d.set_item("tau_f_d", b)?;
+    d.set_item("tau_b_d", at.tau_b_d)?;
+    d.set_item("tau_f_d", at.tau_f_d)?;
     d.set_item("size", table.size())?;
     d.set_item("spacing", table.spacing().name())?;
-    d.set_item("table_bilinear", bilinear)?;
-    d.set_item("table_nearest", nearest)?;
-    d.set_item("f64", exact)?;
-    d.set_item("error_bilinear", (f64::from(bilinear) - exact).abs())?;
-    d.set_item("error_nearest", (f64::from(nearest) - exact).abs())?;
+    d.set_item("table_bilinear", at.bilinear)?;
+    d.set_item("table_nearest", at.nearest)?;
+    d.set_item("f64", at.exact)?;
+    d.set_item("error_bilinear", at.error_bilinear())?;
+    d.set_item("error_nearest", at.error_nearest())?;
     Ok(d)
 }
 
@@ -177,18 +166,6 @@ pub fn compare(
     };
     tetray_compare::run(setup, &specs, options, log).map_err(|e| match e {
         tetray_compare::CompareError::Engine(e) => to_py(*e),
-        other => value_error(error_chain(&other)),
+        other => value_error(tetray_engine::error_chain(&other)),
     })
-}
-
-/// An error and its sources on one line.
-fn error_chain(e: &dyn std::error::Error) -> String {
-    let mut text = e.to_string();
-    let mut source = e.source();
-    while let Some(s) = source {
-        text.push_str(": ");
-        text.push_str(&s.to_string());
-        source = s.source();
-    }
-    text
 }

@@ -122,25 +122,7 @@ impl SegmentKernel {
             cache: None,
         });
         let size = psi.size() as u32;
-        let texture = device.create_texture_with_data(
-            &ctx.queue,
-            &wgpu::TextureDescriptor {
-                label: Some("psi table"),
-                size: wgpu::Extent3d {
-                    width: size,
-                    height: size,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: wgpu::TextureFormat::R32Float,
-                usage: wgpu::TextureUsages::TEXTURE_BINDING,
-                view_formats: &[],
-            },
-            wgpu::util::TextureDataOrder::LayerMajor,
-            bytemuck::cast_slice(psi.values()),
-        );
+        let psi = tetray_gpu::psi_texture(ctx, size, psi.values());
         if let Some(error) = pollster::block_on(scope.pop()) {
             return Err(StudyError::GpuKernel {
                 what: "compiling the segment kernel",
@@ -150,7 +132,7 @@ impl SegmentKernel {
         Ok(SegmentKernel {
             pipeline,
             layout,
-            psi: texture.create_view(&wgpu::TextureViewDescriptor::default()),
+            psi,
             psi_size: size,
         })
     }

@@ -158,10 +158,7 @@ fn raycast(
         max_steps_per_ray: None,
         threads: None,
     };
-    let mut images = Vec::new();
-    let mut stats = [WalkCounters::default(); 2];
-    let mut elapsed = Duration::ZERO;
-    for (view, integrator) in integrators.iter().enumerate() {
+    views(job, "CPU reference", integrators, |view, integrator| {
         let base = view * height as usize;
         let progress = |done: usize, _rows: usize| rows_done.store(base + done, Ordering::Relaxed);
         let out = render_scalar_with_progress(
@@ -171,22 +168,38 @@ fn raycast(
             &options,
             Some(&progress),
         )?;
-        let s = out.stats;
+        Ok((out.image, out.stats.counters, out.stats.elapsed))
+    })
+}
+
+/// The frame of `job`, one image per view from `render(view, renderer)`
+/// (the image, its counters and its time).
+fn views<R>(
+    job: &CpuJob,
+    renderer: &'static str,
+    renderers: &[R],
+    mut render: impl FnMut(usize, &R) -> anyhow::Result<(Image, WalkCounters, Duration)>,
+) -> anyhow::Result<CpuFrame> {
+    let mut images = Vec::new();
+    let mut stats = [WalkCounters::default(); 2];
+    let mut elapsed = Duration::ZERO;
+    for (view, r) in renderers.iter().enumerate() {
+        let (image, counters, time) = render(view, r)?;
         if let Some(slot) = stats.get_mut(view) {
-            *slot = s.counters;
+            *slot = counters;
         }
-        elapsed += s.elapsed;
-        images.push(out.image);
+        elapsed += time;
+        images.push(image);
     }
     Ok(CpuFrame {
         key: job.key.clone(),
         report: FrameReport {
-            size: (width, height),
+            size: job.key.size,
             views: images.len() as u32,
             elapsed,
             batches: 1,
             stats,
-            renderer: "CPU reference",
+            renderer,
         },
         images,
     })
@@ -207,36 +220,13 @@ fn shear_warp(
         early_termination: job.key.early_termination,
         skip_empty: true,
     };
-    let mut images = Vec::new();
-    let mut stats = [WalkCounters::default(); 2];
-    let mut elapsed = Duration::ZERO;
-    for (view, sw) in renderers.iter().enumerate() {
+    views(job, shear_warp_name(renderers), renderers, |view, sw| {
         let out = sw
             .render(&job.key.camera, &options)
             .map_err(|e| anyhow::anyhow!("shear-warp: {e}"))?;
         rows_done.store((view + 1) * height as usize, Ordering::Relaxed);
-        if let Some(slot) = stats.get_mut(view) {
-            *slot = WalkCounters {
-                rays: u64::from(width) * u64::from(height),
-                rays_hit: out.image.rgba.iter().filter(|p| p[3] > 0.0).count() as u64,
-                segments: out.stats.slabs_composited,
-                ..WalkCounters::default()
-            };
-        }
-        elapsed += out.stats.elapsed;
-        images.push(out.image);
-    }
-    Ok(CpuFrame {
-        key: job.key.clone(),
-        report: FrameReport {
-            size: (width, height),
-            views: images.len() as u32,
-            elapsed,
-            batches: 1,
-            stats,
-            renderer: shear_warp_name(renderers),
-        },
-        images,
+        let counters = WalkCounters::of_image(&out.image, out.stats.slabs_composited, 0);
+        Ok((out.image, counters, out.stats.elapsed))
     })
 }
 

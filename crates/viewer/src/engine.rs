@@ -347,21 +347,12 @@ impl Progressive {
         rows: std::ops::Range<u32>,
         encoder: &mut wgpu::CommandEncoder,
     ) -> anyhow::Result<()> {
-        let opts = render_options(key, key.size);
-        for (target, integrator) in self.full.iter().zip(integrators) {
-            if rows.start == 0 {
+        if rows.start == 0 {
+            for target in &self.full {
                 target.clear_stats(encoder);
             }
-            let job = FrameJob {
-                scene: &gpu.scene,
-                integrator,
-                camera: &key.camera,
-                opts: &opts,
-            };
-            gpu.raycaster
-                .encode_rows(&gpu.ctx, &job, target, rows.clone(), encoder, None)?;
         }
-        Ok(())
+        encode_views(gpu, key, &self.full, integrators, key.size, rows, encoder)
     }
 
     fn encode_preview(
@@ -379,18 +370,15 @@ impl Progressive {
                 .map(|_| GpuTarget::new(&gpu.ctx, pw, ph))
                 .collect::<Result<_, _>>()?;
         }
-        let opts = render_options(key, (pw, ph));
-        for (target, integrator) in self.preview.iter().zip(integrators) {
-            let job = FrameJob {
-                scene: &gpu.scene,
-                integrator,
-                camera: &key.camera,
-                opts: &opts,
-            };
-            gpu.raycaster
-                .encode_rows(&gpu.ctx, &job, target, 0..ph, encoder, None)?;
-        }
-        Ok(())
+        encode_views(
+            gpu,
+            key,
+            &self.preview,
+            integrators,
+            (pw, ph),
+            0..ph,
+            encoder,
+        )
     }
 
     fn present_params(&self, key: &FrameKey, look: &Look) -> PresentParams {
@@ -441,6 +429,30 @@ impl Progressive {
             output,
         );
     }
+}
+
+/// Encodes rows `rows` of each view's target, a `size` frame of `key`.
+fn encode_views(
+    gpu: &GpuRenderer,
+    key: &FrameKey,
+    targets: &[GpuTarget],
+    integrators: &[&GpuIntegrator],
+    size: (u32, u32),
+    rows: std::ops::Range<u32>,
+    encoder: &mut wgpu::CommandEncoder,
+) -> anyhow::Result<()> {
+    let opts = render_options(key, size);
+    for (target, integrator) in targets.iter().zip(integrators) {
+        let job = FrameJob {
+            scene: &gpu.scene,
+            integrator,
+            camera: &key.camera,
+            opts: &opts,
+        };
+        gpu.raycaster
+            .encode_rows(&gpu.ctx, &job, target, rows.clone(), encoder, None)?;
+    }
+    Ok(())
 }
 
 fn render_options(key: &FrameKey, (width, height): (u32, u32)) -> GpuRenderOptions {

@@ -163,24 +163,16 @@ pub struct DisplayTexture {
 
 impl DisplayTexture {
     pub fn new(ctx: &GpuContext, width: u32, height: u32) -> DisplayTexture {
-        let texture = ctx.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("viewer display"),
-            size: wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
+        let texture = ctx.device.create_texture(&tetray_gpu::texture_2d(
+            "viewer display",
+            (width, height),
             // egui-wgpu's native textures are Rgba8Unorm, read as sRGB-encoded
             // values: the bytes on screen are the bytes a PNG would hold.
-            format: wgpu::TextureFormat::Rgba8Unorm,
-            usage: wgpu::TextureUsages::STORAGE_BINDING
+            wgpu::TextureFormat::Rgba8Unorm,
+            wgpu::TextureUsages::STORAGE_BINDING
                 | wgpu::TextureUsages::TEXTURE_BINDING
                 | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[],
-        });
+        ));
         let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
         DisplayTexture { texture, view }
     }
@@ -210,16 +202,7 @@ impl Presenter {
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("present bindings"),
             entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::COMPUTE,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Storage { read_only: true },
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                },
+                storage(0),
                 storage(1),
                 storage(2),
                 storage(3),

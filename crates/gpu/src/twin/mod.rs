@@ -31,7 +31,19 @@ pub struct Inputs<'a> {
     pub integrator: IntegratorInputs<'a>,
 }
 
-impl Inputs<'_> {
+impl<'a> Inputs<'a> {
+    /// The buffers a frame binds: `params`, the scene's arrays and the
+    /// integrator's tables.
+    pub fn new(params: &'a Params, scene: &'a SceneData, integrator: &'a IntegratorData) -> Self {
+        Inputs {
+            params,
+            points: &scene.points,
+            tets: &scene.tets,
+            bvh: &scene.bvh,
+            integrator: IntegratorInputs::new(&params.integrator, integrator),
+        }
+    }
+
     fn point(&self, i: u32) -> Vec4 {
         Vec4::from_array(self.points[i as usize])
     }
@@ -56,13 +68,7 @@ pub fn render_traffic(
     opts: &GpuRenderOptions,
 ) -> Result<(Image, [u64; STAT_COUNT], Traffic), GpuError> {
     let params = frame_params(&scene.layout(), integrator, camera, opts)?;
-    let input = Inputs {
-        params: &params,
-        points: &scene.points,
-        tets: &scene.tets,
-        bvh: &scene.bvh,
-        integrator: IntegratorInputs::new(&params.integrator, integrator),
-    };
+    let input = Inputs::new(&params, scene, integrator);
     let width = opts.width as usize;
     let mut rgba = vec![[0.0f32; 4]; width * opts.height as usize];
     let (stats, traffic) = rgba
@@ -100,13 +106,7 @@ pub fn trace_pixel(
     y: u32,
 ) -> Result<([f32; 4], [u64; STAT_COUNT]), GpuError> {
     let params = frame_params(&scene.layout(), integrator, camera, opts)?;
-    let input = Inputs {
-        params: &params,
-        points: &scene.points,
-        tets: &scene.tets,
-        bvh: &scene.bvh,
-        integrator: IntegratorInputs::new(&params.integrator, integrator),
-    };
+    let input = Inputs::new(&params, scene, integrator);
     let (color, counters) = cast_ray(&input, x, y);
     Ok((color.to_array(), counters.as_stats()))
 }

@@ -121,14 +121,8 @@ impl Plot3dGrid {
 /// [`IoError::Io`] when a file cannot be read; the errors of
 /// [`read_plot3d_grid_bytes`].
 pub fn read_plot3d_grid_files(xyz: &Path, q: Option<&Path>) -> Result<Plot3dGrid, IoError> {
-    let read = |path: &Path| {
-        std::fs::read(path).map_err(|source| IoError::Io {
-            file: path.display().to_string(),
-            source,
-        })
-    };
-    let xyz_bytes = read(xyz)?;
-    let q_bytes = q.map(read).transpose()?;
+    let xyz_bytes = super::read_file(xyz)?;
+    let q_bytes = q.map(super::read_file).transpose()?;
     let q_name = q.map_or_else(String::new, |q| q.display().to_string());
     let parsed = parse(
         &xyz_bytes,

@@ -60,6 +60,14 @@ pub struct Plot3dRead {
     pub conditions: Option<[f32; 4]>,
 }
 
+/// A file's bytes, or [`IoError::Io`] naming it.
+pub(crate) fn read_file(path: &Path) -> Result<Vec<u8>, IoError> {
+    std::fs::read(path).map_err(|source| IoError::Io {
+        file: path.display().to_string(),
+        source,
+    })
+}
+
 /// Reads a grid file and optionally its solution file. Without a solution
 /// the mesh has no fields.
 ///
@@ -67,14 +75,8 @@ pub struct Plot3dRead {
 /// [`IoError::Io`] when a file cannot be read; the errors of
 /// [`read_plot3d_bytes`].
 pub fn read_plot3d_files(xyz: &Path, q: Option<&Path>) -> Result<Plot3dRead, IoError> {
-    let read = |path: &Path| {
-        std::fs::read(path).map_err(|source| IoError::Io {
-            file: path.display().to_string(),
-            source,
-        })
-    };
-    let xyz_bytes = read(xyz)?;
-    let q_bytes = q.map(read).transpose()?;
+    let xyz_bytes = read_file(xyz)?;
+    let q_bytes = q.map(read_file).transpose()?;
     let names = Names {
         xyz: xyz.display().to_string(),
         q: q.map_or_else(String::new, |q| q.display().to_string()),

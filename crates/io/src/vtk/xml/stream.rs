@@ -8,7 +8,7 @@ use std::io::{self, BufWriter, Write};
 
 use glam::Vec3;
 
-use super::tree::escape;
+use super::tree::{escape, open_vtkfile};
 use tetray_mesh::ScalarField;
 
 /// Tetrahedra per chunk when writing from a slice.
@@ -235,21 +235,8 @@ fn write_xml(
     header_size: usize,
     options: &VtuStreamOptions,
 ) -> io::Result<()> {
-    writeln!(w, "<?xml version=\"1.0\"?>")?;
-    writeln!(
-        w,
-        "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"{}\" header_type=\"{}\">",
-        if options.big_endian {
-            "BigEndian"
-        } else {
-            "LittleEndian"
-        },
-        if options.header_u64 {
-            "UInt64"
-        } else {
-            "UInt32"
-        },
-    )?;
+    open_vtkfile(w, options.big_endian, options.header_u64)?;
+    writeln!(w, ">")?;
     writeln!(w, "  <UnstructuredGrid>")?;
     writeln!(
         w,

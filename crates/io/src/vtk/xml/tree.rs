@@ -506,6 +506,27 @@ impl<'a> Builder<'a> {
     }
 }
 
+/// The opening `<VTKFile ...` tag of an UnstructuredGrid file written with
+/// `big_endian` byte order and `header_u64` headers, after the XML
+/// declaration; the caller closes the tag (after a compressor, if any).
+pub(super) fn open_vtkfile(
+    w: &mut impl std::io::Write,
+    big_endian: bool,
+    header_u64: bool,
+) -> std::io::Result<()> {
+    writeln!(w, "<?xml version=\"1.0\"?>")?;
+    write!(
+        w,
+        "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"{}\" header_type=\"{}\"",
+        if big_endian {
+            "BigEndian"
+        } else {
+            "LittleEndian"
+        },
+        if header_u64 { "UInt64" } else { "UInt32" },
+    )
+}
+
 /// Escapes text for an XML attribute value.
 pub(super) fn escape(s: &str) -> String {
     let mut out = String::with_capacity(s.len());

@@ -10,7 +10,7 @@ use flate2::write::ZlibEncoder;
 
 use super::data::ZLIB;
 use super::stream::{VtuIndex, VtuStreamOptions, write_vtu_streamed};
-use super::tree::escape;
+use super::tree::{escape, open_vtkfile};
 use crate::vtk::VtuEncoding;
 use tetray_mesh::TetMesh;
 
@@ -93,21 +93,7 @@ pub fn write_vtu_with(mesh: &TetMesh, w: &mut impl Write, options: &VtuOptions) 
     };
     let mut w = io::BufWriter::new(w);
     let compressed = options.zlib && options.encoding != VtuEncoding::Ascii;
-    writeln!(w, "<?xml version=\"1.0\"?>")?;
-    write!(
-        w,
-        "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"{}\" header_type=\"{}\"",
-        if options.big_endian {
-            "BigEndian"
-        } else {
-            "LittleEndian"
-        },
-        if options.header_u64 {
-            "UInt64"
-        } else {
-            "UInt32"
-        },
-    )?;
+    open_vtkfile(&mut w, options.big_endian, options.header_u64)?;
     if compressed {
         write!(w, " compressor=\"{ZLIB}\"")?;
     }
