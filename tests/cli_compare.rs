@@ -74,7 +74,11 @@ fn the_ray_caster_matches_the_reference_where_the_projection_does_not() {
         ]
     );
     let gpu = &rows[0]["abs_error"];
-    assert!(f(&gpu["max"]) < 1e-4, "{gpu}");
+    eprintln!("gpu ppi against the f64 reference: {gpu}");
+    // The kernel's f32 arithmetic and Psi table against the f64 reference:
+    // measured 9.7e-6 here on lavapipe (2e-6 to 1.2e-5 over other views):
+    // 3.5e-5, about 3 times the largest.
+    assert!(f(&gpu["max"]) < 3.5e-5, "{gpu}");
     assert_eq!(gpu["over_one_level"], 0, "{gpu}");
     let pixels = 64.0 * 48.0;
     for row in rows {

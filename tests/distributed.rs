@@ -23,8 +23,12 @@ use support::{BIN, run, scratch, text};
 use tetray_mesh::TetMesh;
 use tetray_mesh::synthetic::{CellSplit, box_grid, hollow_box};
 
-/// The bound on the difference per pixel channel.
-const TOLERANCE: f32 = 1e-5;
+/// The bound on the difference per pixel channel against one process:
+/// about 3 times the worst measured (4.8e-7, the blood vessels at every
+/// rank count; 3.6e-7 for the striped and ghost-cell boxes), as the
+/// fragments of the ranks composite the same segments in groups, so only
+/// f32 rounding differs.
+const TOLERANCE: f32 = 1.4e-6;
 
 fn mpirun() -> Option<PathBuf> {
     let found = std::env::var_os("PATH").and_then(|paths| {

@@ -1,8 +1,8 @@
 //! The in-situ entry points under `mpirun -n P --oversubscribe`, P =
 //! 1..4: the binary `in_situ` renders a hollow box split spatially by
 //! rank, as tetrahedra arrays and as hexahedral VTK cells, and checks it
-//! on rank 0 against the whole mesh rendered in one process (1e-5 per
-//! pixel channel; it exits non-zero beyond). Without `mpirun`
+//! on rank 0 against the whole mesh rendered in one process (9e-7 per
+//! pixel channel, 1000 pixels lit; it exits non-zero otherwise). Without `mpirun`
 //! the test skips loudly, unless `TETRAY_REQUIRE_MPI=1`.
 #![cfg(feature = "mpi")]
 

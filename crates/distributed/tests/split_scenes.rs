@@ -95,7 +95,9 @@ fn split_hollow_box_composites_to_the_whole_render() {
         }
         // The same segments, composited in groups: f32 rounding, plus
         // entries at part interfaces found by the BVH (distance within an
-        // ulp of the walk's): 1e-5, the bound.
-        assert!(worst < 1e-5, "{ranks} parts: max error {worst}");
+        // ulp of the walk's). Measured at most 2.4e-7 for 1 to 4 parts:
+        // 7e-7, about 3 times that.
+        eprintln!("{ranks} parts: max error {worst:.2e}");
+        assert!(worst < 7e-7, "{ranks} parts: max error {worst}");
     }
 }

@@ -211,8 +211,8 @@ fn subdivided_quadratic_tetra_render_closer_to_the_f64_integral_than_corners() {
         worst[0], worst[1], mean[0], mean[1]
     );
     // Piecewise-linear interpolation on tets of half the edge length: the
-    // field error falls about 4-fold; require at least 2-fold in both the
-    // worst pixel and the mean.
-    assert!(worst[0] < 0.5 * worst[1], "{worst:?}");
-    assert!(mean[0] < 0.5 * mean[1], "{mean:?}");
+    // field error falls about 4-fold (measured 4.1 in the worst pixel, 4.0
+    // in the mean); require at least 3-fold in both.
+    assert!(3.0 * worst[0] < worst[1], "{worst:?}");
+    assert!(3.0 * mean[0] < mean[1], "{mean:?}");
 }

@@ -4,7 +4,9 @@
 //! writes the image. Rank 0 then renders the whole mesh alone (the same
 //! camera fit, transfer function and unit distance, from the whole mesh)
 //! and prints the largest difference per pixel channel; it exits with 1
-//! when that exceeds 1e-5 (the compositing is exact up to f32 rounding).
+//! when that exceeds 9e-7 (the compositing is exact up to f32 rounding:
+//! measured at most 3.0e-7 for 1 to 4 ranks) or when fewer than 1000 of
+//! the 6912 pixels are lit (1909 are).
 //! With the argument `cells`, each rank hands over a slab of a hollow box
 //! of hexahedra as VTK cells (`render_in_situ_cells`) instead, checked
 //! against the whole grid split into tetrahedra in one process.
@@ -247,7 +249,7 @@ fn main() -> ExitCode {
         "in situ ({what}) over {size} ranks: max error {worst:e} against one process ({lit} \
          pixels lit)"
     );
-    if worst > 1e-5 || lit == 0 {
+    if worst > 9e-7 || lit < 1000 {
         return ExitCode::FAILURE;
     }
     ExitCode::SUCCESS
