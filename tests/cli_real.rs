@@ -17,51 +17,135 @@ fn real(name: &str) -> PathBuf {
         .join(name)
 }
 
-/// The volumetric samples, with the tetrahedra each must give at least
-/// (a lower bound from its cell count: one tetrahedron per linear cell, 8
-/// per quadratic tetrahedron; exact counts are the mesh crate's tests).
-const VOLUMES: [(&str, u64); 10] = [
-    // 7472 HEX8 cells.
-    ("disk_out_ref.ex2", 7472),
-    // 39,353 cells over 4 pieces.
-    ("blood_vessels/T0000000500.pvtu", 39_353),
-    // 5 x 11 x 8 hexahedra.
-    ("StructuredGrid.vts", 440),
-    // 96 quadratic tetrahedra, 8 tetrahedra each.
-    ("QuadraticTetra.vtu", 768),
-    ("tetra.vtu", 8),
-    ("QuadraticWedge.vtu", 48),
-    ("notch_disp.vtu", 2192),
-    ("polyhedron2pieces.vtu", 2),
-    ("can.vtu", 1000),
-    ("uGridEx.vtk", 4),
-];
+/// One volumetric sample: what VTK's own reader (VTK 9.1,
+/// `vtkXMLGenericDataObjectReader`, `vtkUnstructuredGridReader`,
+/// `vtkExodusIIReader`) counts in it, and what `info --json` must say.
+struct Sample {
+    name: &'static str,
+    /// Points as VTK reads them.
+    vtk_points: u64,
+    /// Volume cells as VTK reads them (surface cells, lines and vertices
+    /// not counted): `input_cells` must equal it.
+    vtk_volume_cells: u64,
+    /// Points after loading: VTK's, less the duplicates welded across
+    /// pieces, plus the face and cell centres that quadratic hexahedra and
+    /// wedges are split about.
+    points: u64,
+    /// Tetrahedra the walk uses (cells left out not counted).
+    tets: u64,
+}
 
-/// Cell counts read from the files' headers: `NumberOfCells` of the XML
-/// files, `num_elem` of the Exodus file.
-const FILE_CELLS: [(&str, u64); 4] = [
-    ("disk_out_ref.ex2", 7472),
-    ("QuadraticTetra.vtu", 96),
-    // 39 of its cells are tangled and left out of the walk.
-    ("can.vtu", 4800),
-    ("StructuredGrid.vts", 440),
+const VOLUMES: [Sample; 10] = [
+    // 7472 hexahedra, 6 tetrahedra each.
+    Sample {
+        name: "disk_out_ref.ex2",
+        vtk_points: 8499,
+        vtk_volume_cells: 7472,
+        points: 8499,
+        tets: 44_832,
+    },
+    // 39,353 voxels over 4 pieces: 6 tetrahedra each, 5 for the 191 whose
+    // face diagonals (cut through each face's smallest point index) allow
+    // it; 1382 points repeated on the pieces' shared faces are welded.
+    Sample {
+        name: "blood_vessels/T0000000500.pvtu",
+        vtk_points: 48_823,
+        vtk_volume_cells: 39_353,
+        points: 47_441,
+        tets: 235_927,
+    },
+    // 5 x 11 x 8 hexahedra, 6 tetrahedra each.
+    Sample {
+        name: "StructuredGrid.vts",
+        vtk_points: 648,
+        vtk_volume_cells: 440,
+        points: 648,
+        tets: 2640,
+    },
+    // 96 quadratic tetrahedra, 8 tetrahedra each on their own nodes.
+    Sample {
+        name: "QuadraticTetra.vtu",
+        vtk_points: 189,
+        vtk_volume_cells: 96,
+        points: 189,
+        tets: 768,
+    },
+    // One quadratic tetrahedron; the file's two quadratic triangles are
+    // surface cells.
+    Sample {
+        name: "tetra.vtu",
+        vtk_points: 22,
+        vtk_volume_cells: 1,
+        points: 22,
+        tets: 8,
+    },
+    // 16 quadratic wedges, 24 tetrahedra each about added face centres.
+    Sample {
+        name: "QuadraticWedge.vtu",
+        vtk_points: 93,
+        vtk_volume_cells: 16,
+        points: 125,
+        tets: 384,
+    },
+    // 2188 quadratic hexahedra and 4 quadratic wedges.
+    Sample {
+        name: "notch_disp.vtu",
+        vtk_points: 12_717,
+        vtk_volume_cells: 2192,
+        points: 22_735,
+        tets: 100_329,
+    },
+    // Two pyramids (2 tetrahedra each) and two polyhedra, split about a
+    // centre point each.
+    Sample {
+        name: "polyhedron2pieces.vtu",
+        vtk_points: 18,
+        vtk_volume_cells: 4,
+        points: 20,
+        tets: 28,
+    },
+    // 4800 hexahedra, 39 of them tangled and left out: (4800 - 39) x 6.
+    Sample {
+        name: "can.vtu",
+        vtk_points: 6724,
+        vtk_volume_cells: 4800,
+        points: 6724,
+        tets: 28_566,
+    },
+    // 12 cells of which 4 are volume cells: two hexahedra (6 tetrahedra
+    // each) and two tetrahedra.
+    Sample {
+        name: "uGridEx.vtk",
+        vtk_points: 27,
+        vtk_volume_cells: 4,
+        points: 27,
+        tets: 14,
+    },
 ];
 
 #[test]
 fn every_volumetric_sample_loads_and_renders() {
     let dir = support::scratch("cli-real", "render");
-    for (name, min_tets) in VOLUMES {
+    for sample in VOLUMES {
+        let name = sample.name;
         let path = real(name);
         let file = path.to_str().expect("UTF-8 path");
         let out = run(&dir, &["info", "--json", file]);
         assert!(out.status.success(), "info {name}: {}", text(&out.stderr));
         let info: Value = serde_json::from_slice(&out.stdout).expect("JSON");
         let tets = info["tets"].as_u64().expect("tets");
-        assert!(tets >= min_tets, "{name}: {tets} tetrahedra: {info}");
-        // The cells as the file counts them (NumberOfCells / num_elem),
-        // those left out of the walk included.
-        if let Some(&(_, cells)) = FILE_CELLS.iter().find(|(n, _)| *n == name) {
-            assert_eq!(info["input_cells"], cells, "{name}: {info}");
+        assert_eq!(tets, sample.tets, "{name}: {info}");
+        assert_eq!(info["points"], sample.points, "{name}: {info}");
+        // The volume cells as VTK counts them, those left out of the walk
+        // included.
+        assert_eq!(
+            info["input_cells"], sample.vtk_volume_cells,
+            "{name}: {info}"
+        );
+        // Where no point was added, the points are VTK's less those welded.
+        let welded = info["welded_points"].as_u64().expect("welded_points");
+        if sample.points <= sample.vtk_points {
+            assert_eq!(sample.points + welded, sample.vtk_points, "{name}: {info}");
         }
 
         let image = dir.join("image.exr");
