@@ -15,13 +15,11 @@
 
 use glam::{DVec3, Vec3};
 use serde::Serialize;
-use tetray_boundary_bvh::BuildPreset;
 use tetray_core::{Camera, Image};
-use tetray_integrate::{
-    ColorPoint, IntegratorOptions, Method, OpacityPoint, ScalarIntegrator, TransferFunction,
+use tetray_engine::{
+    Engine, FrameOptions, IntegratorChoice, Log, Source, TfSource, WalkOptions, prepare, tf,
 };
-use tetray_raycast::{RenderOptions, render_scalar};
-use tetray_scene::Scene;
+use tetray_integrate::{ColorPoint, Method, OpacityPoint};
 use tetray_shearwarp::{Classification, ClassifyOptions, RegularGrid, ShearWarp, ShearWarpOptions};
 
 use crate::output::{Cell, Csv, OutputDir};
@@ -79,8 +77,11 @@ fn field(p: Vec3) -> f32 {
     0.1 + 0.8 * (-1.5 * p.length_squared()).exp() + 0.05 * (3.0 * p.x).sin() * (2.0 * p.y).cos()
 }
 
+/// A transfer function's control points: colour and opacity.
+type Points = (Vec<ColorPoint>, Vec<OpacityPoint>);
+
 /// Eight narrow opacity peaks over the field's range, alternating colour.
-fn peaks() -> Result<TransferFunction, StudyError> {
+fn peaks() -> Points {
     let mut color = Vec::new();
     let mut opacity = vec![OpacityPoint {
         scalar: 0.0,
@@ -111,8 +112,7 @@ fn peaks() -> Result<TransferFunction, StudyError> {
             alpha: 0.0,
         });
     }
-    TransferFunction::new(color, opacity)
-        .map_err(|e| StudyError::Option(format!("shearwarp: transfer function: {e}")))
+    (color, opacity)
 }
 
 /// Runs the study, writing its plot and tables into `out`.
@@ -126,14 +126,15 @@ pub fn run(
             "shearwarp: needs two or more grids of 5 or more points per axis and 16 pixels".into(),
         ));
     }
-    let tf = peaks()?;
+    let points = peaks();
+    let tf = tf::from_points(points.0.clone(), points.1.clone())?;
     let unit = 0.1;
     let mut rows = Vec::new();
     for &n in &options.grids {
         let h = 2.0 * HALF / (n - 1) as f32;
         let grid = RegularGrid::from_fn([n; 3], Vec3::splat(-HALF), Vec3::splat(h), field)?;
         let camera = view(&grid)?;
-        let reference = reference(&grid, &tf, &camera, options.pixels, unit)?;
+        let reference = reference(&grid, &points, &camera, options.pixels, unit)?;
         for c in [
             Classification::PreIntegrated,
             Classification::PostClassified,
@@ -196,27 +197,43 @@ fn view(grid: &RegularGrid) -> Result<Camera, StudyError> {
     Ok(camera)
 }
 
-/// The exact tetrahedral ray caster on the grid split into tetrahedra.
+/// The exact tetrahedral ray caster on the grid split into tetrahedra,
+/// made and rendered by the engine as `tetray render` makes a frame.
 fn reference(
     grid: &RegularGrid,
-    tf: &TransferFunction,
+    (color, opacity): &Points,
     camera: &Camera,
     pixels: u32,
     unit: f32,
 ) -> Result<Image, StudyError> {
-    let loaded = tetray_mesh::prepare(grid.to_tet_mesh("s"))?;
-    let scene = Scene::from_loaded(loaded, "s", BuildPreset::default())?;
-    let options = IntegratorOptions {
-        unit_distance: unit,
-        ..IntegratorOptions::default()
+    let mesh = tetray_mesh::prepare(grid.to_tet_mesh("s"))?;
+    let options = FrameOptions {
+        integrator: IntegratorChoice {
+            scalar: Some("s".into()),
+            method: Method::Exact,
+            tf: TfSource::Points {
+                color: color.clone(),
+                opacity: opacity.clone(),
+            },
+            unit_distance: Some(unit),
+            ..IntegratorChoice::default()
+        },
+        size: (pixels, pixels),
+        ..FrameOptions::default()
     };
-    let integrator = ScalarIntegrator::new(Method::Exact, tf, &options)?;
-    let opts = RenderOptions {
-        width: pixels,
-        height: pixels,
-        ..RenderOptions::default()
+    let source = Source::Mesh {
+        mesh: Box::new(mesh),
+        name: "the grid split into tetrahedra".into(),
     };
-    Ok(render_scalar(&scene, camera, &integrator, &opts)?.image)
+    let setup = prepare(source, &options, Log::quiet())?;
+    let frame = Engine::Cpu.render(
+        &setup,
+        camera,
+        WalkOptions::default(),
+        (pixels, pixels),
+        None,
+    )?;
+    Ok(frame.image)
 }
 
 /// Mean and largest absolute difference over the RGBA channels of the

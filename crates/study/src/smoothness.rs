@@ -7,7 +7,10 @@
 //! linear luminance and attenuation (or opacity) through the same
 //! thickness, so the true intensity is constant across the face; only the
 //! way the tetrahedra cut the ray changes, and a method that depends on
-//! that makes the intensity vary, with kinks where the cut changes.
+//! that makes the intensity vary, with kinks where the cut changes. The
+//! engine makes the slab ready; the integrators are made from the
+//! materials at the two faces, which no transfer function option
+//! expresses.
 //!
 //! Each profile across the face is convolved with a centre-surround
 //! (difference of Gaussians) kernel, a ganglion-cell response (fig. 6.13):
@@ -15,15 +18,13 @@
 
 use glam::{Vec3, Vec3A};
 use serde::Serialize;
-use tetray_boundary_bvh::BuildPreset;
 use tetray_core::Camera;
+use tetray_engine::{FrameOptions, IntegratorChoice, Log, Setup, Source, prepare};
 use tetray_gpu::{GpuContext, GpuIntegrator, GpuRaycaster, GpuRenderOptions, GpuScene};
 use tetray_integrate::reference::{attenuation_segment, opacity_segment};
 use tetray_integrate::{IntegratorOptions, Material, Method, Model, ScalarIntegrator, TfKnots};
-use tetray_mesh::Topology;
 use tetray_mesh::synthetic::{CellSplit, ScalarSpec, add_field, box_grid};
 use tetray_raycast::{RenderOptions, render_scalar};
-use tetray_scene::Scene;
 
 use crate::cells;
 use crate::output::{Csv, OutputDir};
@@ -172,7 +173,9 @@ pub struct SmoothnessSummary {
 
 /// The slab, its camera and the x of every pixel centre.
 struct Slab {
-    scene: Scene,
+    /// The slab made ready by the engine (its scene and BVH; the study's
+    /// integrators come from materials, not from the setup's).
+    setup: Setup,
     camera: Camera,
     xs: Vec<f64>,
 }
@@ -193,8 +196,20 @@ fn slab(options: &SmoothnessOptions) -> Result<Slab, StudyError> {
             gradient: Vec3::new(0.0, 0.0, 1.0 / THICKNESS),
         },
     );
-    let topology = Topology::build(&mesh)?;
-    let scene = Scene::new(mesh, topology, "depth", BuildPreset::default())?;
+    let frame = FrameOptions {
+        integrator: IntegratorChoice {
+            scalar: Some("depth".into()),
+            ..IntegratorChoice::default()
+        },
+        // One row of pixels across the face.
+        size: (options.pixels, 1),
+        ..FrameOptions::default()
+    };
+    let source = Source::Mesh {
+        mesh: Box::new(tetray_mesh::prepare(mesh)?),
+        name: "the slab".into(),
+    };
+    let setup = prepare(source, &frame, Log::quiet())?;
     // The profile spans the face less a margin, so no ray grazes the sides.
     let margin = 0.02 * width;
     let pixel = (width - 2.0 * margin) / options.pixels as f32;
@@ -209,7 +224,7 @@ fn slab(options: &SmoothnessOptions) -> Result<Slab, StudyError> {
     let xs = (0..options.pixels)
         .map(|i| f64::from(margin) + (f64::from(i) + 0.5) * f64::from(pixel))
         .collect();
-    Ok(Slab { scene, camera, xs })
+    Ok(Slab { setup, camera, xs })
 }
 
 /// The integrator of one case, luminance pair and method (unit distance 1).
@@ -302,7 +317,7 @@ fn cpu_profile(
         height: 1,
         ..RenderOptions::default()
     };
-    let out = render_scalar(&slab.scene, &slab.camera, integrator, &options)?;
+    let out = render_scalar(slab.setup.scene()?, &slab.camera, integrator, &options)?;
     Ok(out.image.rgba.iter().map(|p| f64::from(p[0])).collect())
 }
 
@@ -351,7 +366,7 @@ pub fn run(
     let (gpu, gpu_note) = match options.gpu.then(GpuContext::new) {
         Some(Ok(ctx)) => {
             let raycaster = GpuRaycaster::new(&ctx)?;
-            let scene = GpuScene::new(&ctx, &slab.scene)?;
+            let scene = GpuScene::new(&ctx, slab.setup.scene()?)?;
             (
                 Some(Gpu {
                     ctx,
@@ -459,7 +474,7 @@ pub fn run(
     let checks = checks(&profiles);
     let summary = SmoothnessSummary {
         pixels: options.pixels,
-        tetrahedra: slab.scene.tet_count(),
+        tetrahedra: slab.setup.tet_count(),
         centre_sigma_px: options.centre_sigma_px,
         surround_sigma_px: SURROUND * options.centre_sigma_px,
         gpu_adapter: gpu.as_ref().map(|g| g.ctx.adapter_name()),
