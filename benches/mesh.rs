@@ -1,4 +1,5 @@
-//! Mesh stages: face topology (tets/s), the scene (walk records, Morton
+//! Mesh stages: loading files (reading, splitting cells, orienting,
+//! validating, topology; tets/s), face topology (tets/s), the scene (walk records, Morton
 //! order, BVH; tets/s), the boundary BVH's build (faces/s) and its entry
 //! queries (rays/s), on the Blunt Fin and a generated box.
 
@@ -92,5 +93,32 @@ fn scene_build(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, topology_build, scene_build, bvh);
+/// `tetray_io::load` of three of the real files: XML with quadratic cells,
+/// a parallel XML file of four pieces, and Exodus II.
+fn load(c: &mut Criterion) {
+    let data = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("data/real");
+    let mut group = c.benchmark_group("load");
+    group.sample_size(10);
+    group.measurement_time(Duration::from_secs(3));
+    for name in [
+        "notch_disp.vtu",
+        "blood_vessels/T0000000500.pvtu",
+        "disk_out_ref.ex2",
+    ] {
+        let path = data.join(name);
+        let options = tetray_io::LoadOptions::default();
+        let tets = tetray_io::load(&path, &options)
+            .expect("load")
+            .mesh
+            .tets
+            .len();
+        group.throughput(Throughput::Elements(tets as u64));
+        group.bench_function(BenchmarkId::from_parameter(name), |b| {
+            b.iter(|| tetray_io::load(black_box(&path), &options).expect("load"))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, load, topology_build, scene_build, bvh);
 criterion_main!(benches);
