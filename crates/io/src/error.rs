@@ -5,7 +5,9 @@
 use tetray_mesh::MeshError;
 
 use crate::exodus::ExodusError;
+use crate::preflight::MemoryError;
 use crate::vtk::VtkError;
+use crate::vtkhdf::VtkHdfError;
 
 /// Everything that can go wrong loading a mesh from a file. Each variant
 /// names the file.
@@ -27,11 +29,29 @@ pub enum IoError {
     #[error(transparent)]
     Exodus(#[from] ExodusError),
 
+    /// The VTKHDF reader failed.
+    #[error(transparent)]
+    VtkHdf(#[from] VtkHdfError),
+
+    /// A series file (`.series`, `.pvd`) that cannot be read, or one of
+    /// its steps.
+    #[error(transparent)]
+    Series(#[from] crate::series::SeriesError),
+
+    /// A time step or time asked of a file that stores none.
+    #[error("{file}: {message}")]
+    Time { file: String, message: String },
+
+    /// The file's declared sizes need more memory than is available.
+    #[error(transparent)]
+    Memory(#[from] MemoryError),
+
     /// Neither the file's name nor its content says which reader to use.
     #[error(
         "{file}: unknown mesh format ({seen}): expected .vtk, .vtu, .vts, .vtr, .vti, \
          .pvtu, .pvts, .pvtr, .pvti, .vtm, an Exodus II file (.e, .exo, .ex2, .exii, .g, \
-         .gen) or a PLOT3D grid (name ending in xyz.bin, .xyz or .x)"
+         .gen, .e-s*), VTKHDF (.vtkhdf, .hdf, .h5), a PLOT3D grid (name ending in \
+         xyz.bin, .xyz or .x) or a file series (.series, .pvd)"
     )]
     UnknownFormat {
         file: String,

@@ -11,6 +11,8 @@
 //!   one DataArray decoder), parallel XML (`.pvt*`) and multi-block `.vtm`;
 //!   writers for `.vtu` (whole or streamed) and legacy `.vtk`;
 //! - [`exodus`]: Exodus II (netCDF);
+//! - [`vtkhdf`]: VTKHDF (VTK's data model in HDF5), temporal and
+//!   partitioned;
 //! - [`plot3d`]: PLOT3D grids and solutions, read and written;
 //! - [`generate`]: large test meshes written as files (refined PLOT3D
 //!   grids, a torus shell as `.vtu`).
@@ -25,15 +27,21 @@ mod probe;
 pub mod exodus;
 pub mod generate;
 pub mod plot3d;
+pub mod preflight;
+pub mod series;
+pub mod time;
 pub mod vtk;
+pub mod vtkhdf;
 
 pub use error::IoError;
 pub use exodus::{ExodusError, ExodusOptions, ExodusRead, read_exodus_bytes, read_exodus_file};
 pub use load::{
-    LoadOptions, load, load_grid, load_image_data, load_piece_subset, load_plot3d_bytes,
-    plot3d_q_sibling,
+    LoadOptions, load, load_grid, load_image_data, load_image_grid, load_piece_subset,
+    load_plot3d_bytes, plot3d_q_sibling,
 };
 pub use plot3d::{Plot3dRead, read_plot3d_bytes, read_plot3d_files};
 pub use probe::{DataKind, Probe, probe};
+pub use series::{SeriesError, SeriesStep, read_series};
 pub use tetray_mesh::{ElementBlock, LoadReport, LoadedMesh};
 pub use vtk::{ImageGrid, VtkError, read_image_grid};
+pub use vtkhdf::{VtkHdfError, VtkHdfOptions, VtkHdfRead, read_vtkhdf_bytes, read_vtkhdf_file};

@@ -11,7 +11,10 @@ use tetray_mesh::{LoadedMesh, MeshRead, finish};
 
 use crate::exodus::{ExodusOptions, ExodusRead, read_exodus_file};
 use crate::plot3d::{Plot3dRead, read_plot3d_bytes, read_plot3d_files};
-use crate::probe::{Format, format_of, probe};
+use crate::probe::{Format, format_for};
+use crate::series::{SeriesError, read_series};
+use crate::time::{StepError, choose_step, out_of_range};
+use crate::vtkhdf::{VtkHdfOptions, VtkHdfRead, read_vtkhdf_file};
 use crate::{IoError, vtk};
 
 /// Options of [`load`].
@@ -21,10 +24,11 @@ pub struct LoadOptions {
     /// `xyz` replaced by `q` (`postxyz.bin` -> `postq.bin`, `a.xyz` or
     /// `a.x` -> `a.q`), used when it exists.
     pub plot3d_q: Option<PathBuf>,
-    /// Exodus II: the 0-based time step to read (default: the first).
+    /// Exodus II, VTKHDF, a file series: the 0-based time step to read
+    /// (default: the first).
     pub time_step: Option<usize>,
-    /// Exodus II: read the time step whose stored time is nearest this
-    /// (not together with `time_step`).
+    /// Exodus II, VTKHDF, a file series: read the time step whose stored
+    /// time is nearest this (not together with `time_step`).
     pub time: Option<f64>,
     /// For a multi-block `.vtm`: keep only the block of this name (or
     /// path `outer/inner`, by the blocks' `name` attributes).
@@ -50,12 +54,14 @@ pub fn plot3d_q_sibling(xyz: &Path) -> Option<PathBuf> {
 }
 
 /// Reads the mesh at `path` (the reader chosen by name, any case, or where
-/// the name says nothing by the file's content, see [`probe`]: `.vtk` (any dataset
-/// type its DATASET line names), `.vtu`, `.vts`, `.vtr`, `.vti`, their
-/// parallel forms `.pvt*`, multi-block `.vtm`, an Exodus II file `.e`,
-/// `.exo`, `.ex2`, `.exii`, `.g`, `.gen`, or a PLOT3D grid `*xyz.bin`, `*.xyz`,
-/// `*.x`), then orients, validates and builds the topology (see
-/// [`tetray_mesh::prepare`]).
+/// the name says nothing by the file's content, see [`crate::probe`]: `.vtk`
+/// (any dataset type its DATASET line names), `.vtu`, `.vts`, `.vtr`,
+/// `.vti`, their parallel forms `.pvt*`, multi-block `.vtm`, an Exodus II
+/// file `.e`, `.exo`, `.ex2`, `.exii`, `.g`, `.gen`, `.e-s*`, VTKHDF
+/// `.vtkhdf` (and `.hdf`, `.hdf5`, `.h5` holding a `/VTKHDF` group), a
+/// PLOT3D grid `*xyz.bin`, `*.xyz`, `*.x`, or a time series of any of them,
+/// `*.series` or `.pvd`), then orients, validates and builds the topology
+/// (see [`tetray_mesh::prepare`]).
 ///
 /// # Errors
 /// [`IoError::UnknownFormat`] for a file neither its name nor its content
@@ -63,10 +69,12 @@ pub fn plot3d_q_sibling(xyz: &Path) -> Option<PathBuf> {
 /// errors, and validation errors wrapped in [`tetray_mesh::MeshError::InFile`].
 pub fn load(path: &Path, opts: &LoadOptions) -> Result<LoadedMesh, IoError> {
     let file = path.display().to_string();
-    let format = match format_of(path) {
-        Some(format) => format,
-        None => probe(path)?.format,
-    };
+    Ok(finish(read_file(path, opts)?).map_err(|e| e.in_file(&file))?)
+}
+
+/// The reader's output for the file at `path`, chosen as [`load`] says.
+fn read_file(path: &Path, opts: &LoadOptions) -> Result<MeshRead, IoError> {
+    let (format, _, _) = format_for(path)?;
     let vtk_opts = vtk::ReadOptions {
         linearize: opts.linearize,
     };
@@ -107,6 +115,9 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<LoadedMesh, IoError> {
             };
             from_exodus(read_exodus_file(path, &exodus)?)
         }
+        Format::VtkHdf | Format::Hdf5 => {
+            from_vtkhdf(read_vtkhdf_file(path, &vtkhdf_options(opts))?)
+        }
         Format::Plot3d => {
             let mut warnings = Vec::new();
             let q = match &opts.plot3d_q {
@@ -128,8 +139,72 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<LoadedMesh, IoError> {
             read.warnings = warnings;
             read
         }
+        Format::Series => read_series_step(path, opts)?,
     };
-    Ok(finish(read).map_err(|e| e.in_file(&file))?)
+    if read.times.is_empty() && (opts.time_step.is_some() || opts.time.is_some()) {
+        // Asked of a file without time steps: the same error as for any.
+        choose_step(&[], opts.time_step, opts.time).map_err(|e| IoError::Time {
+            file: path.display().to_string(),
+            message: step_message(e),
+        })?;
+    }
+    Ok(read)
+}
+
+fn step_message(e: StepError) -> String {
+    match e {
+        StepError::OutOfRange { requested, count } => out_of_range(requested, count),
+        StepError::Time(message) => message,
+    }
+}
+
+/// The step of a series (`.series`, `.pvd`) chosen by `--time-step` or
+/// `--time`, read by its own file's reader (the parts of a collection's
+/// step welded like the blocks of a `.vtm`), with the series' times.
+fn read_series_step(path: &Path, opts: &LoadOptions) -> Result<MeshRead, IoError> {
+    let file = path.display().to_string();
+    let steps = read_series(path)?;
+    let times: Vec<f64> = steps.iter().map(|s| s.time).collect();
+    let fail = |message: String| SeriesError {
+        file: file.clone(),
+        message,
+    };
+    let step = choose_step(&times, opts.time_step, opts.time)
+        .map_err(|e| fail(step_message(e)))?
+        .unwrap_or(0);
+    let files = &steps[step].files;
+    // A step's file is read whole: its own steps, if any, are not the
+    // series'.
+    let inner = LoadOptions {
+        time_step: None,
+        time: None,
+        ..opts.clone()
+    };
+    let mut read = match files.as_slice() {
+        [one] => {
+            if format_for(one)?.0 == Format::Series {
+                return Err(fail(format!(
+                    "step {step} names {}, itself a series",
+                    one.display()
+                ))
+                .into());
+            }
+            read_file(one, &inner)?
+        }
+        parts => from_vtk(
+            vtk::read_parts(
+                parts,
+                &file,
+                &vtk::ReadOptions {
+                    linearize: opts.linearize,
+                },
+            )?,
+            "VTK multi-block",
+        ),
+    };
+    read.times = times;
+    read.time_step = Some(step);
+    Ok(read)
 }
 
 /// Some pieces of a parallel file ([`vtk::read_piece_subset`]) ready to
@@ -211,6 +286,22 @@ fn cells_split(c: &CellCounts) -> usize {
         + c.subdivided.iter().map(|s| s.cells).sum::<usize>()
 }
 
+fn vtkhdf_options(opts: &LoadOptions) -> VtkHdfOptions {
+    VtkHdfOptions {
+        time_step: opts.time_step,
+        time: opts.time,
+        linearize: opts.linearize,
+    }
+}
+
+fn from_vtkhdf(read: VtkHdfRead) -> MeshRead {
+    MeshRead {
+        times: read.times,
+        time_step: read.time_step,
+        ..from_vtk(read.read, "VTKHDF")
+    }
+}
+
 fn from_exodus(read: ExodusRead) -> MeshRead {
     let c = read.cells;
     MeshRead {
@@ -256,6 +347,26 @@ fn from_plot3d(read: Plot3dRead) -> MeshRead {
     }
 }
 
+/// Reads the regular grid alone of an image-data file (`.vti`, legacy
+/// STRUCTURED_POINTS, VTKHDF ImageData, the chosen step of a temporal
+/// one): no cells, no topology (shear-warp renders it).
+///
+/// # Errors
+/// As [`load_image_data`].
+pub fn load_image_grid(path: &Path, opts: &LoadOptions) -> Result<vtk::ImageGrid, IoError> {
+    if format_for(path)?.0 == Format::VtkHdf {
+        let read = read_vtkhdf_file(path, &vtkhdf_options(opts))?;
+        return read.image.ok_or_else(|| not_vtkhdf_image(path));
+    }
+    if opts.time_step.is_some() || opts.time.is_some() {
+        choose_step(&[], opts.time_step, opts.time).map_err(|e| IoError::Time {
+            file: path.display().to_string(),
+            message: step_message(e),
+        })?;
+    }
+    Ok(vtk::read_image_grid(path)?)
+}
+
 /// Reads an image-data file (`.vti`, legacy STRUCTURED_POINTS) once as
 /// both what it is: the mesh [`load`] makes of it, and its regular grid.
 ///
@@ -270,14 +381,30 @@ pub fn load_image_data(
     let vtk_opts = vtk::ReadOptions {
         linearize: opts.linearize,
     };
+    let format = format_for(path)?.0;
+    if format == Format::VtkHdf {
+        let mut read = read_vtkhdf_file(path, &vtkhdf_options(opts))?;
+        let image = read.image.take().ok_or_else(|| not_vtkhdf_image(path))?;
+        let mesh = finish(from_vtkhdf(read)).map_err(|e| e.in_file(&file))?;
+        return Ok((mesh, image));
+    }
     let (read, image) = vtk::read_image_data_with(path, &vtk_opts)?;
-    let format = if read.dataset == "ImageData" && format_of(path) == Some(Format::Xml) {
+    let format = if read.dataset == "ImageData" && format == Format::Xml {
         "VTK XML ImageData"
     } else {
         "VTK legacy STRUCTURED_POINTS"
     };
     let mesh = finish(from_vtk(read, format)).map_err(|e| e.in_file(&file))?;
     Ok((mesh, image))
+}
+
+fn not_vtkhdf_image(path: &Path) -> IoError {
+    vtk::VtkError::from(tetray_mesh::cells::CellError::Invalid {
+        file: path.display().to_string(),
+        section: "VTKHDF".into(),
+        message: "a regular grid needs VTKHDF ImageData, not UnstructuredGrid".into(),
+    })
+    .into()
 }
 
 #[cfg(test)]

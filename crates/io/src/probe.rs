@@ -1,7 +1,9 @@
 //! What a file holds, before reading it: its format by the file's name, and
 //! by its first bytes where the name does not say (a legacy VTK header, a
-//! VTK XML root element, a netCDF or HDF5 signature); and whether it is
-//! image data, which shear-warp renders as the regular grid it is.
+//! VTK XML root element, a netCDF or HDF5 signature); an HDF5 file is told
+//! apart by its groups (VTKHDF's `/VTKHDF`, else netCDF-4, read as Exodus
+//! II); and whether it is image data, which shear-warp renders as the
+//! regular grid it is.
 
 use std::io::Read;
 use std::path::Path;
@@ -19,6 +21,12 @@ pub(crate) enum Format {
     MultiBlock,
     Plot3d,
     Exodus,
+    VtkHdf,
+    /// An HDF5 container by name (`.hdf`, `.h5`...) or signature, whose
+    /// groups say what it holds; never returned by [`format_for`].
+    Hdf5,
+    /// A time series of files: `*.series` (JSON) or `.pvd`.
+    Series,
 }
 
 /// What the cells of a file are.
@@ -50,6 +58,9 @@ impl Probe {
             Format::MultiBlock => "VTK multi-block",
             Format::Plot3d => "PLOT3D",
             Format::Exodus => "Exodus II",
+            Format::VtkHdf => "VTKHDF",
+            Format::Hdf5 => "HDF5",
+            Format::Series => "file series",
         }
     }
 }
@@ -65,6 +76,29 @@ const HEAD: usize = 4096;
 /// (saying what the file starts with) when neither its name nor its
 /// content is a format tetray reads.
 pub fn probe(path: &Path) -> Result<Probe, IoError> {
+    let (format, by_content, head) = format_for(path)?;
+    let kind = match format {
+        Format::Xml if xml_type(&head).as_deref() == Some("ImageData") => DataKind::ImageData,
+        Format::Legacy if legacy_dataset(&head).as_deref() == Some("STRUCTURED_POINTS") => {
+            DataKind::ImageData
+        }
+        Format::VtkHdf if crate::vtkhdf::is_image_data(path) => DataKind::ImageData,
+        _ => DataKind::Cells,
+    };
+    Ok(Probe {
+        format,
+        kind,
+        by_content,
+    })
+}
+
+/// The reader for the file at `path`: by its name, else by its first
+/// bytes, an HDF5 container by its groups; whether the content decided;
+/// and the first bytes.
+///
+/// # Errors
+/// As [`probe`].
+pub(crate) fn format_for(path: &Path) -> Result<(Format, bool, Vec<u8>), IoError> {
     let file = path.display().to_string();
     let head = read_head(path).map_err(|source| IoError::Io {
         file: file.clone(),
@@ -82,25 +116,22 @@ pub fn probe(path: &Path) -> Result<Probe, IoError> {
             }
         },
     };
-    let kind = match format {
-        Format::Xml if xml_type(&head).as_deref() == Some("ImageData") => DataKind::ImageData,
-        Format::Legacy if legacy_dataset(&head).as_deref() == Some("STRUCTURED_POINTS") => {
-            DataKind::ImageData
-        }
-        _ => DataKind::Cells,
+    let format = match format {
+        Format::Hdf5 if crate::vtkhdf::is_vtkhdf(path) => Format::VtkHdf,
+        // netCDF-4 is HDF5: Exodus II files are written so.
+        Format::Hdf5 => Format::Exodus,
+        other => other,
     };
-    Ok(Probe {
-        format,
-        kind,
-        by_content,
-    })
+    Ok((format, by_content, head))
 }
 
 /// The format a file name says (any case).
 pub(crate) fn format_of(path: &Path) -> Option<Format> {
     let name = path.file_name()?.to_string_lossy().to_lowercase();
     let ext = name.rsplit_once('.').map_or("", |(_, e)| e);
-    if ext == "vtk" {
+    if crate::series::is_series_name(&name) {
+        Some(Format::Series)
+    } else if ext == "vtk" {
         Some(Format::Legacy)
     } else if ["vtu", "vts", "vtr", "vti"].contains(&ext) {
         Some(Format::Xml)
@@ -108,8 +139,12 @@ pub(crate) fn format_of(path: &Path) -> Option<Format> {
         Some(Format::Parallel)
     } else if ext == "vtm" {
         Some(Format::MultiBlock)
-    } else if ["e", "exo", "ex2", "exii", "g", "gen"].contains(&ext) {
+    } else if ["e", "exo", "ex2", "exii", "g", "gen"].contains(&ext) || is_spread_exodus(&name) {
         Some(Format::Exodus)
+    } else if ext == "vtkhdf" {
+        Some(Format::VtkHdf)
+    } else if ["hdf", "hdf5", "h5", "he5"].contains(&ext) {
+        Some(Format::Hdf5)
     } else if name.ends_with("xyz.bin") || name.ends_with(".xyz") || name.ends_with(".x") {
         Some(Format::Plot3d)
     } else {
@@ -117,21 +152,38 @@ pub(crate) fn format_of(path: &Path) -> Option<Format> {
     }
 }
 
+/// The file of one process of an Exodus model spread over several: its
+/// name ends in `.e-s<step>`, `.e-s.<step>`, `.exo-s<step>`..., optionally
+/// followed by `.<processes>.<rank>` (`model.e-s.0002.4.0`).
+fn is_spread_exodus(name: &str) -> bool {
+    ["e", "exo", "ex2", "g"].iter().any(|ext| {
+        name.match_indices(&format!(".{ext}-s")).any(|(at, m)| {
+            let rest = &name[at + m.len()..];
+            let rest = rest.strip_prefix('.').unwrap_or(rest);
+            !rest.is_empty()
+                && rest
+                    .split('.')
+                    .all(|p| !p.is_empty() && p.bytes().all(|b| b.is_ascii_digit()))
+        })
+    })
+}
+
 /// The format the first bytes of a file say: a legacy VTK header, a VTK
-/// XML root element, or a netCDF (classic or HDF5-based) signature, which
-/// tetray reads as Exodus II.
+/// XML root element, a netCDF classic signature (read as Exodus II) or an
+/// HDF5 signature (resolved by its groups).
 fn format_of_content(head: &[u8]) -> Option<Format> {
     if head.starts_with(b"# vtk DataFile") {
         return Some(Format::Legacy);
     }
-    let netcdf = [
-        &b"CDF\x01"[..],
-        b"CDF\x02",
-        b"CDF\x05",
-        b"\x89HDF\r\n\x1a\n",
-    ];
+    let netcdf = [&b"CDF\x01"[..], b"CDF\x02", b"CDF\x05"];
     if netcdf.iter().any(|sig| head.starts_with(sig)) {
         return Some(Format::Exodus);
+    }
+    if head.starts_with(b"\x89HDF\r\n\x1a\n") {
+        return Some(Format::Hdf5);
+    }
+    if crate::series::is_series_content(head) {
+        return Some(Format::Series);
     }
     match xml_type(head)?.as_str() {
         "UnstructuredGrid" | "StructuredGrid" | "RectilinearGrid" | "ImageData" => {
@@ -218,6 +270,11 @@ mod tests {
             assert_eq!(format_of(p(name)), Some(Format::Exodus), "{name}");
         }
         assert_eq!(format_of(p("a.e-s")), None);
+        for name in ["can.e-s002", "can.e-s.0002", "m.exo-s3.4.0"] {
+            assert_eq!(format_of(p(name)), Some(Format::Exodus), "{name}");
+        }
+        assert_eq!(format_of(p("a.vtkhdf")), Some(Format::VtkHdf));
+        assert_eq!(format_of(p("a.HDF")), Some(Format::Hdf5));
 
         let legacy = b"# vtk DataFile Version 3.0\nimage\nASCII\nDATASET structured_points\n";
         assert_eq!(format_of_content(legacy), Some(Format::Legacy));
@@ -230,7 +287,7 @@ mod tests {
         assert_eq!(format_of_content(b"CDF\x01\0\0"), Some(Format::Exodus));
         assert_eq!(
             format_of_content(b"\x89HDF\r\n\x1a\n\0"),
-            Some(Format::Exodus)
+            Some(Format::Hdf5)
         );
         assert_eq!(format_of_content(b"<VTKFile type=\"PolyData\">"), None);
         assert_eq!(format_of_content(b"PK\x03\x04"), None);

@@ -5,6 +5,7 @@
 
 use super::nc::{Nc, times};
 use super::{ExodusError, ExodusOptions, KeptBlock};
+use crate::time::StepError;
 use tetray_mesh::cells::CellArray;
 
 /// The stored times (`time_whole`), one per time step.
@@ -28,35 +29,17 @@ pub(super) fn choose_step(
     times: &[f64],
     opts: &ExodusOptions,
 ) -> Result<Option<usize>, ExodusError> {
-    let time_error = |message: String| ExodusError::Time {
-        file: nc.name.into(),
-        message,
-    };
-    match (opts.time_step, opts.time) {
-        (Some(_), Some(_)) => Err(time_error("give a time step or a time, not both".into())),
-        (Some(step), None) if step < times.len() => Ok(Some(step)),
-        (Some(step), None) => Err(ExodusError::TimeStepOutOfRange {
+    crate::time::choose_step(times, opts.time_step, opts.time).map_err(|e| match e {
+        StepError::OutOfRange { requested, count } => ExodusError::TimeStepOutOfRange {
             file: nc.name.into(),
-            requested: step,
-            count: times.len(),
-        }),
-        (None, Some(t)) if !t.is_finite() => {
-            Err(time_error(format!("time {t} is not a finite number")))
-        }
-        (None, Some(t)) if times.is_empty() => Err(time_error(format!(
-            "time {t} asked for, but the file stores no time steps"
-        ))),
-        (None, Some(t)) => {
-            let mut best = 0;
-            for (i, ti) in times.iter().enumerate() {
-                if (ti - t).abs() < (times[best] - t).abs() {
-                    best = i;
-                }
-            }
-            Ok(Some(best))
-        }
-        (None, None) => Ok((!times.is_empty()).then_some(0)),
-    }
+            requested,
+            count,
+        },
+        StepError::Time(message) => ExodusError::Time {
+            file: nc.name.into(),
+            message,
+        },
+    })
 }
 
 /// Variable names from `name_*_var`, or `<fallback><n>` where a name is

@@ -294,7 +294,38 @@ fn multiblock_raw(path: &Path, block: Option<&str>, depth: usize) -> Result<Cell
             });
         }
     }
-    let folder = folder_of(path);
+    weld_leaves(&folder_of(path), &leaves, &name, depth)
+}
+
+/// The parts of one step of a data collection (`.pvd`), each a VTK XML
+/// file, read in parallel and welded like the blocks of a `.vtm`; `name`
+/// (the collection) is used in messages.
+pub(crate) fn read_parts(
+    files: &[PathBuf],
+    name: &str,
+    opts: &ReadOptions,
+) -> Result<VtkRead, VtkError> {
+    let leaves: Vec<Leaf> = files
+        .iter()
+        .enumerate()
+        .map(|(i, file)| Leaf {
+            path: vec![format!("part {i}")],
+            file: file.display().to_string(),
+        })
+        .collect();
+    let grid = weld_leaves(Path::new(""), &leaves, name, 0)?;
+    ready(grid, name, opts)
+}
+
+/// The leaves' files (relative to `folder`) read in parallel; those with
+/// volume cells welded, the others skipped with a note.
+fn weld_leaves(
+    folder: &Path,
+    leaves: &[Leaf],
+    name: &str,
+    depth: usize,
+) -> Result<CellGrid, VtkError> {
+    let name = name.to_string();
     let read = leaves
         .par_iter()
         .map(|leaf| read_leaf(&folder.join(&leaf.file), leaf, &name, depth))

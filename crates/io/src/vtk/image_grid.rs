@@ -63,6 +63,15 @@ fn read_raw_image(path: &Path, file: &str) -> Result<(CellGrid, Option<ImageGeom
     }
 }
 
+/// The regular grid of image data another reader assembled (VTKHDF).
+pub(crate) fn image_grid_of(
+    grid: &CellGrid,
+    geometry: ImageGeometry,
+    file: &str,
+) -> Result<ImageGrid, VtkError> {
+    image_grid(grid, Some(geometry), file)
+}
+
 fn image_grid(
     grid: &CellGrid,
     image: Option<ImageGeometry>,

@@ -27,7 +27,9 @@ mod xml;
 
 use std::path::Path;
 
+pub(crate) use collection::read_parts;
 pub use error::VtkError;
+pub(crate) use image_grid::image_grid_of;
 pub use image_grid::{ImageGrid, read_image_data_with, read_image_grid};
 pub use legacy::write::write_legacy;
 pub use piece_subset::{PieceSubset, parallel_piece_count, read_piece_subset};
