@@ -35,7 +35,7 @@ struct Sample {
     tets: u64,
 }
 
-const VOLUMES: [Sample; 10] = [
+const VOLUMES: [Sample; 12] = [
     // 7472 hexahedra, 6 tetrahedra each.
     Sample {
         name: "disk_out_ref.ex2",
@@ -112,6 +112,24 @@ const VOLUMES: [Sample; 10] = [
         points: 6724,
         tets: 28_566,
     },
+    // The same model written by VTK as VTKHDF 1.0 (vtkHDFReader counts the
+    // same 6724 points and 4800 cells).
+    Sample {
+        name: "can-vtu.hdf",
+        vtk_points: 6724,
+        vtk_volume_cells: 4800,
+        points: 6724,
+        tets: 28_566,
+    },
+    // A ParaView file series over three VTKHDF steps: the first step,
+    // crushed less, has no tangled cell (4800 x 6).
+    Sample {
+        name: "series/can/can.hdf.series",
+        vtk_points: 6724,
+        vtk_volume_cells: 4800,
+        points: 6724,
+        tets: 28_800,
+    },
     // 12 cells of which 4 are volume cells: two hexahedra (6 tetrahedra
     // each) and two tetrahedra.
     Sample {
@@ -166,13 +184,13 @@ fn every_volumetric_sample_loads_and_renders() {
         assert!(out.status.success(), "render {name}:\n{said}");
         // What had to change is one summary line: the can's tangled cells
         // left out, uGridEx's faces split the other way made boundary.
-        if matches!(name, "can.vtu" | "uGridEx.vtk") {
+        if matches!(name, "can.vtu" | "can-vtu.hdf" | "uGridEx.vtk") {
             let summary: Vec<&str> = said
                 .lines()
                 .filter(|l| l.starts_with("mesh changed on load: "))
                 .collect();
             assert_eq!(summary.len(), 1, "{name}:\n{said}");
-            let want = if name == "can.vtu" {
+            let want = if name != "uGridEx.vtk" {
                 "39 cells left out"
             } else {
                 "non-conforming faces made boundary"
@@ -227,8 +245,9 @@ fn quadratic_cells_subdivide_or_keep_their_corners() {
     assert_eq!(tets(&["--linearize", "corners"]), 96);
 }
 
-/// Exodus time steps: `info` lists them; a step the file does not store is
-/// one clear error naming the file and how many it has.
+/// Time steps of an Exodus file and of a file series: `info` lists them; a
+/// step the file does not store is one clear error naming the file and how
+/// many it has, for a file without steps too.
 #[test]
 fn exodus_time_steps_are_listed_and_checked() {
     let dir = support::scratch("cli-real", "time-steps");
@@ -244,4 +263,34 @@ fn exodus_time_steps_are_listed_and_checked() {
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
     assert!(stderr.contains("disk_out_ref.ex2"), "{stderr}");
     assert!(stderr.contains("time step 1 is out of range"), "{stderr}");
+}
+
+#[test]
+fn series_time_steps_are_listed_and_chosen() {
+    let dir = support::scratch("cli-real", "series");
+    let path = real("series/can/can.hdf.series");
+    let file = path.to_str().expect("UTF-8");
+    let out = run(&dir, &["info", file, "--time", "1.2"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let said = text(&out.stdout);
+    assert!(
+        said.contains("time steps:      3 (read step 1, time 1)"),
+        "{said}"
+    );
+    let out = run(&dir, &["info", "--json", file, "--time-step", "2"]);
+    let info: Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    assert_eq!(info["times"], serde_json::json!([0.0, 1.0, 2.0]), "{info}");
+    assert_eq!(info["time_step"], 2, "{info}");
+    let vtu = real("tetra.vtu");
+    let out = run(
+        &dir,
+        &["info", vtu.to_str().expect("UTF-8"), "--time-step", "1"],
+    );
+    assert_eq!(out.status.code(), Some(1));
+    let stderr = text(&out.stderr);
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(
+        stderr.contains("tetra.vtu: time step 1 is out of range: the file stores 0"),
+        "{stderr}"
+    );
 }

@@ -16,18 +16,21 @@ use tetray_project::SortKind;
 pub struct MeshArgs {
     /// Mesh file: .vtk (unstructured, structured, rectilinear or image
     /// data), .vtu, .vts, .vtr, .vti, their parallel forms .pvtu, .pvts,
-    /// .pvtr, .pvti, multi-block .vtm, Exodus II (.e, .exo, .ex2, .g, .gen),
-    /// or a PLOT3D grid (*xyz.bin, *.xyz, *.x). Default: the embedded Blunt
-    /// Fin (PLOT3D, NASA).
+    /// .pvtr, .pvti, multi-block .vtm, Exodus II (.e, .exo, .ex2, .exii, .g,
+    /// .gen), VTKHDF (.vtkhdf, .hdf), a PLOT3D grid (*xyz.bin, *.xyz, *.x),
+    /// or a time series of them (*.series, .pvd). Default: the embedded
+    /// Blunt Fin (PLOT3D, NASA).
     pub mesh: Option<PathBuf>,
     /// PLOT3D solution (q) file. Default: the grid's name with "xyz"
     /// replaced by "q" (postxyz.bin -> postq.bin), when it exists.
     #[arg(long, value_name = "FILE")]
     pub q: Option<PathBuf>,
-    /// Exodus II: the time step to read, counted from 0 (default: 0).
+    /// Files with time steps (Exodus II, VTKHDF, *.series, .pvd): the time
+    /// step to read, counted from 0 (default: 0).
     #[arg(long, value_name = "N", conflicts_with = "time")]
     pub time_step: Option<usize>,
-    /// Exodus II: read the time step whose stored time is nearest T.
+    /// Files with time steps: read the time step whose stored time is
+    /// nearest T.
     #[arg(long, value_name = "T", value_parser = parse_time, allow_hyphen_values = true)]
     pub time: Option<f64>,
     /// For a multi-block .vtm: keep only this block (its name attribute,

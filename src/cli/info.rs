@@ -98,9 +98,10 @@ struct InfoJson<'a> {
     load_seconds: f64,
     valid: bool,
     warnings: &'a [String],
-    /// Exodus II: the stored times, one per time step (empty otherwise).
+    /// The stored times, one per time step (Exodus II, VTKHDF, a file
+    /// series; empty otherwise).
     times: &'a [f64],
-    /// Exodus II: the time step read (0-based).
+    /// The time step read (0-based).
     time_step: Option<usize>,
     /// Exodus II: the element blocks, kept (volume) or skipped.
     blocks: Vec<BlockJson<'a>>,

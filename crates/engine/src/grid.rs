@@ -31,29 +31,25 @@ pub(crate) fn prepare_grid(
     log: Log<'_>,
 ) -> Result<Setup, EngineError> {
     let start = Instant::now();
-    let path = match &source {
+    let (path, load) = match &source {
         Source::File {
             path,
             options: load,
         } => {
-            if load.plot3d_q.is_some()
-                || load.time_step.is_some()
-                || load.time.is_some()
-                || load.block.is_some()
-            {
+            if load.plot3d_q.is_some() || load.block.is_some() {
                 bail!(
-                    "{}: a PLOT3D solution, a time step or a block do not apply to a regular \
-                     grid (a .vti or STRUCTURED_POINTS file)",
+                    "{}: a PLOT3D solution or a block do not apply to a regular grid (a .vti, \
+                     STRUCTURED_POINTS or VTKHDF ImageData file)",
                     path.display()
                 );
             }
-            path
+            (path, load)
         }
         _ => bail!("{}", not_image_data(&source.name())),
     };
     check_file(path)?;
     let name = path.display().to_string();
-    let mut image = tetray_io::read_image_grid(path)
+    let mut image = tetray_io::load_image_grid(path, load)
         .with_context(|| format!("{name}: shear-warp needs a uniform grid"))?;
     let load_time = start.elapsed();
     for warning in &image.warnings {

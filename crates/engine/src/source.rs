@@ -11,7 +11,7 @@ use tetray_io::{DataKind, ImageGrid, LoadOptions};
 use tetray_mesh::LoadedMesh;
 use tetray_mesh::cells::CellGrid;
 
-use crate::error::{EngineError, bail};
+use crate::error::EngineError;
 
 /// The embedded default dataset: NASA's Blunt Fin, PLOT3D big-endian.
 const BLUNT_FIN_XYZ: &[u8] = include_bytes!("../../../data/plot3d/bluntfinxyz.bin");
@@ -156,9 +156,7 @@ pub fn load(source: Source) -> Result<MeshInput, EngineError> {
                     q.display()
                 )));
             }
-            let loaded = tetray_io::load(&path, &options)?;
-            check_time_series(&name, &options, &loaded)?;
-            loaded
+            tetray_io::load(&path, &options)?
         }
         Source::Arrays {
             grid,
@@ -190,7 +188,6 @@ pub(crate) fn load_image_data(
     let start = Instant::now();
     let name = path.display().to_string();
     let (loaded, image) = tetray_io::load_image_data(path, options)?;
-    check_time_series(&name, options, &loaded)?;
     let input = MeshInput {
         name,
         loaded,
@@ -205,23 +202,6 @@ pub(crate) fn check_file(path: &std::path::Path) -> Result<(), EngineError> {
     } else {
         Err(EngineError::NoSuchFile(path.display().to_string()))
     }
-}
-
-/// A time step or time was asked of a file that has no time steps.
-fn check_time_series(
-    name: &str,
-    options: &LoadOptions,
-    loaded: &LoadedMesh,
-) -> Result<(), EngineError> {
-    let timed = options.time_step.is_some() || options.time.is_some();
-    if timed && loaded.report.format != "Exodus II" {
-        bail!(
-            "{name}: a time step was asked for, but {} files have none (time steps are \
-             read from Exodus II files)",
-            loaded.report.format
-        );
-    }
-    Ok(())
 }
 
 pub fn plural(n: usize) -> &'static str {
