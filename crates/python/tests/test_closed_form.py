@@ -208,3 +208,55 @@ def test_a_linear_field_has_the_integral_of_an_f64_quadrature():
     for c in range(3):
         assert np.abs(image[..., c][inside] - light).max() < TOLERANCE
     assert np.abs(image[checked & ~inside]).max() == 0.0
+
+
+def write_vtkhdf_box(path, steps=(0.0, 0.5)):
+    """The box [0, 2] x [0, 1] x [0, 1] as a VTKHDF 2.2 UnstructuredGrid
+    written with h5py: two partitions (x below and above 1), each its own
+    points, over two time steps of the same cells, "c" = 0 at the first
+    (clear) and 0.5 at the second."""
+    import h5py
+
+    parts = [box(0.0, 1.0).cast_to_unstructured_grid(), box(1.0, 2.0).cast_to_unstructured_grid()]
+    with h5py.File(path, "w") as f:
+        root = f.create_group("VTKHDF")
+        root.attrs.create("Version", np.array([2, 2], dtype="i8"))
+        root.attrs.create("Type", np.bytes_("UnstructuredGrid"))
+        root["NumberOfPoints"] = np.array([p.n_points for p in parts], dtype="i8")
+        root["NumberOfCells"] = np.array([p.n_cells for p in parts], dtype="i8")
+        root["NumberOfConnectivityIds"] = np.array([len(p.cell_connectivity) for p in parts], dtype="i8")
+        root["Points"] = np.vstack([p.points for p in parts]).astype("f8")
+        root["Types"] = np.concatenate([p.celltypes for p in parts]).astype("u1")
+        root["Offsets"] = np.concatenate([p.cell_offsets for p in parts]).astype("i8")
+        root["Connectivity"] = np.concatenate([p.cell_connectivity for p in parts]).astype("i8")
+        n = sum(p.n_points for p in parts)
+        values = np.concatenate([np.full(n, 0.5 * (i > 0)) for i in range(len(steps))])
+        root.create_group("PointData")["c"] = values
+        group = root.create_group("Steps")
+        group.attrs.create("NSteps", np.int64(len(steps)))
+        group["Values"] = np.array(steps)
+        for name in ("PartOffsets", "PointOffsets", "CellOffsets", "ConnectivityIdOffsets"):
+            group[name] = np.zeros(len(steps), dtype="i8")
+        group["NumberOfParts"] = np.full(len(steps), len(parts), dtype="i8")
+        group.create_group("PointDataOffsets")["c"] = np.arange(len(steps), dtype="i8") * n
+
+
+@pytest.mark.parametrize("renderer", ["cpu", "gpu"])
+def test_a_vtkhdf_box_is_the_same_closed_form(tmp_path, renderer):
+    """The box read from a temporal, partitioned VTKHDF file: its second
+    step (chosen by time) is Beer-Lambert's image; its first is clear. The
+    opacity rises from 0 at c = 0 to 2 ALPHA at c = 1: ALPHA at c = 0.5."""
+    if renderer != "cpu":
+        gpu_or_skip()
+    path = tmp_path / "box.vtkhdf"
+    write_vtkhdf_box(path)
+    common = dict(size=SIZE, renderer=renderer, camera=CAMERA, cmap=[RGB], opacity=[0.0, 2 * ALPHA],
+                  clim=(0.0, 1.0), unit_distance=1.0, opacity_mode="exact")
+    image = tetray.render(str(path), "c", time=0.4, **common)
+    want, checked = expected()
+    error = np.abs(image - want)[checked].max()
+    assert error < TOLERANCE, f"{renderer}: worst pixel off by {error}"
+    clear = tetray.render(str(path), "c", time_step=0, **common)
+    assert np.abs(clear).max() == 0.0
+    info = tetray.Scene(str(path), "c", size=(8, 8), renderer="cpu").info
+    assert info["components"] == 1, info
