@@ -294,3 +294,29 @@ fn series_time_steps_are_listed_and_chosen() {
         "{stderr}"
     );
 }
+
+/// A file whose sizes need more memory than the machine has is refused at
+/// once with the estimate, before it is read: Exodus from its header,
+/// VTKHDF from a compressed dataset's shape. `TETRAY_MEMORY_LIMIT` stands
+/// for a small machine (the real case: a 17 GB Exodus file on 24 GB).
+#[test]
+fn files_larger_than_the_memory_are_refused_with_the_estimate() {
+    let dir = support::scratch("cli-real", "memory");
+    for (name, limit) in [("disk_out_ref.ex2", "1000000"), ("can-vtu.hdf", "1000")] {
+        let path = real(name);
+        let out = std::process::Command::new(support::BIN)
+            .args(["info", path.to_str().expect("UTF-8")])
+            .env("TETRAY_MEMORY_LIMIT", limit)
+            .current_dir(&dir)
+            .output()
+            .expect("run tetray");
+        assert_eq!(out.status.code(), Some(1), "{name}");
+        let stderr = text(&out.stderr);
+        assert_eq!(stderr.lines().count(), 1, "{name}: {stderr}");
+        assert!(stderr.contains(name), "{stderr}");
+        assert!(
+            stderr.contains("needs about") && stderr.contains("available"),
+            "{stderr}"
+        );
+    }
+}

@@ -5,8 +5,8 @@
 /// A read that would need more memory than is available.
 #[derive(Debug, thiserror::Error)]
 #[error(
-    "{file}: reading {what} needs about {}, more than the {} this machine has available \
-     (memory and swap)",
+    "{file}: reading {what} needs about {}, more than the {} available (memory and swap, or \
+     TETRAY_MEMORY_LIMIT)",
     bytes(*needed),
     bytes(*available)
 )]

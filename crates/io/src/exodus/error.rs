@@ -27,6 +27,10 @@ pub enum ExodusError {
         message: String,
     },
 
+    /// The file's sizes need more memory than the machine has.
+    #[error(transparent)]
+    Memory(#[from] crate::preflight::MemoryError),
+
     /// A dimension or variable the Exodus II format requires is absent.
     #[error("{file}: Exodus II file has no {what}")]
     Missing { file: String, what: String },

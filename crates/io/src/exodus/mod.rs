@@ -77,11 +77,9 @@ pub struct ExodusRead {
 /// [`ExodusError`] naming the file and what is wrong with it.
 pub fn read_exodus_file(path: &Path, opts: &ExodusOptions) -> Result<ExodusRead, ExodusError> {
     let name = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|source| ExodusError::Io {
-        file: name.clone(),
-        source,
-    })?;
-    read(bytes, &name, opts)
+    // Not read whole: a file larger than the memory is refused by the
+    // preflight on its header's sizes, before anything large is read.
+    read(nc::Nc::open(path, &name)?, &name, opts)
 }
 
 /// Reads an Exodus II file held in memory; `name` is used in messages.
@@ -93,11 +91,11 @@ pub fn read_exodus_bytes(
     name: &str,
     opts: &ExodusOptions,
 ) -> Result<ExodusRead, ExodusError> {
-    read(bytes.to_vec(), name, opts)
+    read(nc::Nc::from_bytes(bytes.to_vec(), name)?, name, opts)
 }
 
-fn read(bytes: Vec<u8>, name: &str, opts: &ExodusOptions) -> Result<ExodusRead, ExodusError> {
-    let (grid, meta) = read::read_raw(bytes, name, opts)?;
+fn read(nc: nc::Nc<'_>, name: &str, opts: &ExodusOptions) -> Result<ExodusRead, ExodusError> {
+    let (grid, meta) = read::read_raw(nc, name, opts)?;
     let vtk = ReadOptions {
         linearize: opts.linearize,
     };

@@ -13,6 +13,17 @@ pub(super) struct Nc<'a> {
 }
 
 impl<'a> Nc<'a> {
+    /// Opens the file at `path` without reading it whole: classic files
+    /// are mapped, netCDF-4 files read object by object.
+    pub fn open(path: &std::path::Path, name: &'a str) -> Result<Self, ExodusError> {
+        let file = NcFile::open(path).map_err(|e| ExodusError::NetCdf {
+            file: name.into(),
+            what: "header".into(),
+            message: e.to_string(),
+        })?;
+        Ok(Nc { file, name })
+    }
+
     pub fn from_bytes(bytes: Vec<u8>, name: &'a str) -> Result<Self, ExodusError> {
         let file = NcFile::from_vec(bytes).map_err(|e| ExodusError::NetCdf {
             file: name.into(),

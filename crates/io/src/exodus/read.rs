@@ -18,12 +18,12 @@ pub(super) struct ExodusMeta {
 }
 
 pub(super) fn read_raw(
-    bytes: Vec<u8>,
+    nc: Nc<'_>,
     name: &str,
     opts: &ExodusOptions,
 ) -> Result<(CellGrid, ExodusMeta), ExodusError> {
-    let nc = Nc::from_bytes(bytes, name)?;
     let num_nodes = nc.require_dim("num_nodes")?;
+    preflight(&nc, num_nodes)?;
     let mut grid = CellGrid {
         points: coordinates(&nc, num_nodes)?,
         points_section: "coordinates".into(),
@@ -70,6 +70,37 @@ pub(super) fn read_raw(
             container: nc.format(),
         },
     ))
+}
+
+/// The memory a read of the file takes, from its header's sizes, checked
+/// against what the machine has before anything large is read. Per node:
+/// the coordinates in f64 and f32, one step's nodal variables in f64 and
+/// as f32 fields; per element: its connectivity in i64 with an offset and
+/// a type, one step's element variables, and up to 6 tetrahedra (the
+/// split of a hexahedron) with their cell map and topology (neighbours,
+/// about 64 bytes each).
+fn preflight(nc: &Nc<'_>, num_nodes: usize) -> Result<(), ExodusError> {
+    let blocks = nc.dim("num_el_blk").unwrap_or(0);
+    let (mut elements, mut ids) = (0u64, 0u64);
+    for number in 1..=blocks.min(1 << 20) {
+        let n = nc.dim(&format!("num_el_in_blk{number}")).unwrap_or(0) as u64;
+        let per = nc.dim(&format!("num_nod_per_el{number}")).unwrap_or(0) as u64;
+        elements = elements.saturating_add(n);
+        ids = ids.saturating_add(n.saturating_mul(per));
+    }
+    let nodal = nc.dim("num_nod_var").unwrap_or(0) as u64;
+    let element_vars = nc.dim("num_elem_var").unwrap_or(0) as u64;
+    let nodes = num_nodes as u64;
+    let needed = nodes
+        .saturating_mul(36 + 12 * nodal)
+        .saturating_add(ids.saturating_mul(8))
+        .saturating_add(elements.saturating_mul(16 + 8 * element_vars + 6 * 84));
+    crate::preflight::check(
+        nc.name,
+        || format!("the mesh ({nodes} nodes, {elements} elements)"),
+        needed,
+    )?;
+    Ok(())
 }
 
 /// `"name" (id 7, HEX8, 12 elements)`, for messages.
