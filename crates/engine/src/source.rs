@@ -197,7 +197,8 @@ pub(crate) fn load_image_data(
 }
 
 pub(crate) fn check_file(path: &std::path::Path) -> Result<(), EngineError> {
-    if path.is_file() {
+    // A folder may be an OpenFOAM case: the reader says.
+    if path.is_file() || path.is_dir() {
         Ok(())
     } else {
         Err(EngineError::NoSuchFile(path.display().to_string()))

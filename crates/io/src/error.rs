@@ -33,6 +33,10 @@ pub enum IoError {
     #[error(transparent)]
     VtkHdf(#[from] VtkHdfError),
 
+    /// The OpenFOAM reader failed.
+    #[error(transparent)]
+    OpenFoam(#[from] crate::openfoam::OpenFoamError),
+
     /// A series file (`.series`, `.pvd`) that cannot be read, or one of
     /// its steps.
     #[error(transparent)]
@@ -50,7 +54,8 @@ pub enum IoError {
     #[error(
         "{file}: unknown mesh format ({seen}): expected .vtk, .vtu, .vts, .vtr, .vti, \
          .pvtu, .pvts, .pvtr, .pvti, .vtm, an Exodus II file (.e, .exo, .ex2, .exii, .g, \
-         .gen, .e-s*), VTKHDF (.vtkhdf, .hdf, .h5), a PLOT3D grid (name ending in \
+         .gen, .e-s*), VTKHDF (.vtkhdf, .hdf, .h5), an OpenFOAM case (its folder, \
+         system/controlDict or a .foam file), a PLOT3D grid (name ending in \
          xyz.bin, .xyz or .x) or a file series (.series, .pvd)"
     )]
     UnknownFormat {

@@ -26,6 +26,7 @@ mod probe;
 
 pub mod exodus;
 pub mod generate;
+pub mod openfoam;
 pub mod plot3d;
 pub mod preflight;
 pub mod series;
@@ -39,6 +40,7 @@ pub use load::{
     LoadOptions, load, load_grid, load_image_data, load_image_grid, load_piece_subset,
     load_plot3d_bytes, plot3d_q_sibling,
 };
+pub use openfoam::{OpenFoamError, OpenFoamOptions, OpenFoamRead, read_openfoam};
 pub use plot3d::{Plot3dRead, read_plot3d_bytes, read_plot3d_files};
 pub use probe::{DataKind, Probe, probe};
 pub use series::{SeriesError, SeriesStep, read_series};

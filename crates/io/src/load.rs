@@ -10,6 +10,7 @@ use tetray_mesh::cells::{CellCounts, CellGrid};
 use tetray_mesh::{LoadedMesh, MeshRead, finish};
 
 use crate::exodus::{ExodusOptions, ExodusRead, read_exodus_file};
+use crate::openfoam::{OpenFoamOptions, read_openfoam};
 use crate::plot3d::{Plot3dRead, read_plot3d_bytes, read_plot3d_files};
 use crate::probe::{Format, format_for};
 use crate::series::{SeriesError, read_series};
@@ -59,7 +60,8 @@ pub fn plot3d_q_sibling(xyz: &Path) -> Option<PathBuf> {
 /// `.vti`, their parallel forms `.pvt*`, multi-block `.vtm`, an Exodus II
 /// file `.e`, `.exo`, `.ex2`, `.exii`, `.g`, `.gen`, `.e-s*`, VTKHDF
 /// `.vtkhdf` (and `.hdf`, `.hdf5`, `.h5` holding a `/VTKHDF` group), a
-/// PLOT3D grid `*xyz.bin`, `*.xyz`, `*.x`, or a time series of any of them,
+/// PLOT3D grid `*xyz.bin`, `*.xyz`, `*.x`, an OpenFOAM case (its folder,
+/// `system/controlDict` or a `.foam` marker), or a time series of any of them,
 /// `*.series` or `.pvd`), then orients, validates and builds the topology
 /// (see [`tetray_mesh::prepare`]).
 ///
@@ -140,6 +142,19 @@ fn read_file(path: &Path, opts: &LoadOptions) -> Result<MeshRead, IoError> {
             read
         }
         Format::Series => read_series_step(path, opts)?,
+        Format::OpenFoam => {
+            let foam = OpenFoamOptions {
+                time_step: opts.time_step,
+                time: opts.time,
+                linearize: opts.linearize,
+            };
+            let read = read_openfoam(path, &foam)?;
+            MeshRead {
+                times: read.times,
+                time_step: read.time_step,
+                ..from_vtk(read.read, "OpenFOAM")
+            }
+        }
     };
     if read.times.is_empty() && (opts.time_step.is_some() || opts.time.is_some()) {
         // Asked of a file without time steps: the same error as for any.

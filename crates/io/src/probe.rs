@@ -27,6 +27,8 @@ pub(crate) enum Format {
     Hdf5,
     /// A time series of files: `*.series` (JSON) or `.pvd`.
     Series,
+    /// An OpenFOAM case: its folder, `controlDict` or a `.foam` marker.
+    OpenFoam,
 }
 
 /// What the cells of a file are.
@@ -61,6 +63,7 @@ impl Probe {
             Format::VtkHdf => "VTKHDF",
             Format::Hdf5 => "HDF5",
             Format::Series => "file series",
+            Format::OpenFoam => "OpenFOAM",
         }
     }
 }
@@ -100,6 +103,17 @@ pub fn probe(path: &Path) -> Result<Probe, IoError> {
 /// As [`probe`].
 pub(crate) fn format_for(path: &Path) -> Result<(Format, bool, Vec<u8>), IoError> {
     let file = path.display().to_string();
+    if path.is_dir() {
+        if crate::openfoam::is_case(path) {
+            return Ok((Format::OpenFoam, true, Vec::new()));
+        }
+        return Err(IoError::UnknownFormat {
+            file,
+            seen: "a folder, not an OpenFOAM case (no constant/polyMesh, processor* or \
+                   system/controlDict)"
+                .into(),
+        });
+    }
     let head = read_head(path).map_err(|source| IoError::Io {
         file: file.clone(),
         source,
@@ -131,6 +145,8 @@ pub(crate) fn format_of(path: &Path) -> Option<Format> {
     let ext = name.rsplit_once('.').map_or("", |(_, e)| e);
     if crate::series::is_series_name(&name) {
         Some(Format::Series)
+    } else if ["foam", "openfoam"].contains(&ext) || name == "controldict" {
+        Some(Format::OpenFoam)
     } else if ext == "vtk" {
         Some(Format::Legacy)
     } else if ["vtu", "vts", "vtr", "vti"].contains(&ext) {
@@ -184,6 +200,9 @@ fn format_of_content(head: &[u8]) -> Option<Format> {
     }
     if crate::series::is_series_content(head) {
         return Some(Format::Series);
+    }
+    if String::from_utf8_lossy(head).contains("FoamFile") {
+        return Some(Format::OpenFoam);
     }
     match xml_type(head)?.as_str() {
         "UnstructuredGrid" | "StructuredGrid" | "RectilinearGrid" | "ImageData" => {
