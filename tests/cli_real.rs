@@ -35,7 +35,7 @@ struct Sample {
     tets: u64,
 }
 
-const VOLUMES: [Sample; 12] = [
+const VOLUMES: [Sample; 13] = [
     // 7472 hexahedra, 6 tetrahedra each.
     Sample {
         name: "disk_out_ref.ex2",
@@ -120,6 +120,15 @@ const VOLUMES: [Sample; 12] = [
         vtk_volume_cells: 4800,
         points: 6724,
         tets: 28_566,
+    },
+    // OpenFOAM's cavity case, opened by its folder: 400 hexahedra one
+    // cell thick (vtkOpenFOAMReader: 882 points, 400 cells), 6 each.
+    Sample {
+        name: "openfoam/cavity",
+        vtk_points: 882,
+        vtk_volume_cells: 400,
+        points: 882,
+        tets: 2400,
     },
     // A ParaView file series over three VTKHDF steps: the first step,
     // crushed less, has no tangled cell (4800 x 6).

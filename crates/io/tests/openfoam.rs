@@ -158,7 +158,19 @@ fn list(style: Style, values: &[f64], integer: bool, width: usize) -> Vec<u8> {
 }
 
 fn write_case(dir: &Path, style: Style) {
-    let (points, faces, owner, neighbour) = hex_and_pyramid();
+    write_mesh_and_fields(
+        dir,
+        style,
+        hex_and_pyramid(),
+        &[3.0, 5.0],
+        &[3., 4., 0., 0., 0., 1.],
+    );
+}
+
+/// A case (or a processor folder of one) holding `mesh`, p and U at time
+/// 1 (per cell) and uniform values at time 0.
+fn write_mesh_and_fields(dir: &Path, style: Style, mesh: PolyMesh, p1: &[f64], u1: &[f64]) {
+    let (points, faces, owner, neighbour) = mesh;
     let mesh = dir.join("constant/polyMesh");
     std::fs::create_dir_all(&mesh).unwrap();
     std::fs::create_dir_all(dir.join("system")).unwrap();
@@ -209,10 +221,7 @@ fn write_case(dir: &Path, style: Style) {
     }
     // Time 0: p uniform 2; time 1: p 3 in the cube and 5 in the pyramid,
     // U (3, 4, 0) and (0, 0, 1); a surface field that is passed over.
-    for (time, p, u) in [
-        ("0", None, None),
-        ("1", Some([3.0, 5.0]), Some([3., 4., 0., 0., 0., 1.])),
-    ] {
+    for (time, p, u) in [("0", None, None), ("1", Some(p1), Some(u1))] {
         let folder = dir.join(time);
         std::fs::create_dir_all(&folder).unwrap();
         let mut bytes = header(style, "volScalarField");
@@ -221,7 +230,7 @@ fn write_case(dir: &Path, style: Style) {
             None => bytes.extend(b"uniform 2;\n"),
             Some(p) => {
                 bytes.extend(b"nonuniform List<scalar> ");
-                bytes.extend(list(style, &p, false, 1));
+                bytes.extend(list(style, p, false, 1));
                 bytes.extend(b";\n");
             }
         }
@@ -233,7 +242,7 @@ fn write_case(dir: &Path, style: Style) {
             None => bytes.extend(b"uniform (0 0 0);\n"),
             Some(u) => {
                 bytes.extend(b"nonuniform List<vector> ");
-                bytes.extend(list(style, &u, false, 3));
+                bytes.extend(list(style, u, false, 3));
                 bytes.extend(b";\n");
             }
         }
@@ -358,4 +367,80 @@ fn every_truncation_is_an_error_or_the_same_mesh() {
             }
         }
     }
+}
+
+/// The same two cells decomposed: the cube in `processor0`, the pyramid in
+/// `processor1` (each with its own points and the shared face as a
+/// boundary), no reconstructed mesh: welded into the same 9 points with
+/// the same fields at the same places.
+#[test]
+fn a_decomposed_case_is_welded() {
+    let style = Style {
+        binary: false,
+        label64: false,
+        scalar32: false,
+        gzip_points: false,
+    };
+    let whole = scratch("reconstructed");
+    write_case(&whole, style);
+    let dir = scratch("decomposed");
+    std::fs::create_dir_all(dir.join("system")).unwrap();
+    std::fs::write(dir.join("system/controlDict"), header(style, "dictionary")).unwrap();
+    let (points, _, _, _) = hex_and_pyramid();
+    let cube = (
+        points[..8].to_vec(),
+        vec![
+            vec![4, 5, 6, 7],
+            vec![0, 3, 2, 1],
+            vec![0, 1, 5, 4],
+            vec![2, 3, 7, 6],
+            vec![1, 2, 6, 5],
+            vec![0, 4, 7, 3],
+        ],
+        vec![0; 6],
+        vec![],
+    );
+    let pyramid = (
+        points[4..].to_vec(),
+        vec![
+            vec![0, 3, 2, 1],
+            vec![0, 1, 4],
+            vec![1, 2, 4],
+            vec![2, 3, 4],
+            vec![3, 0, 4],
+        ],
+        vec![0; 5],
+        vec![],
+    );
+    write_mesh_and_fields(&dir.join("processor0"), style, cube, &[3.0], &[3., 4., 0.]);
+    write_mesh_and_fields(
+        &dir.join("processor1"),
+        style,
+        pyramid,
+        &[5.0],
+        &[0., 0., 1.],
+    );
+    let want = at_step(&whole, Some(1));
+    let got = at_step(&dir, Some(1));
+    assert_eq!(got.report.pieces.pieces, 2);
+    assert_eq!(got.mesh.points.len(), 9);
+    assert_eq!(got.report.times, vec![0.0, 1.0]);
+    assert!((volume(&got) - 7.0 / 6.0).abs() < 1e-6);
+    let at = |m: &LoadedMesh, name: &str| {
+        let mut v: Vec<(i64, i64, i64, u32)> = m
+            .mesh
+            .points
+            .iter()
+            .zip(field(m, name))
+            .map(|(p, f)| {
+                let q = p.as_dvec3() + m.origin();
+                let key = |x: f64| (x * 1000.0).round() as i64;
+                (key(q.x), key(q.y), key(q.z), f.to_bits())
+            })
+            .collect();
+        v.sort_unstable();
+        v
+    };
+    assert_eq!(at(&got, "p"), at(&want, "p"));
+    assert_eq!(at(&got, "U_magnitude"), at(&want, "U_magnitude"));
 }

@@ -260,3 +260,78 @@ def test_a_vtkhdf_box_is_the_same_closed_form(tmp_path, renderer):
     assert np.abs(clear).max() == 0.0
     info = tetray.Scene(str(path), "c", size=(8, 8), renderer="cpu").info
     assert info["components"] == 1, info
+
+
+def write_openfoam_box(case):
+    """The box [0, 2] x [0, 1] x [0, 1] as an ASCII OpenFOAM case of 8 x 4 x 4
+    hexahedra (internal faces first, each turned from its owner, the lower
+    cell, to its neighbour; boundary faces outward): "c" uniform 0 in time
+    folder 0 and 0.5 per cell (nonuniform) in time folder 1."""
+    n, h = (8, 4, 4), 0.25
+
+    def point(i, j, k):
+        return i + (n[0] + 1) * (j + (n[1] + 1) * k)
+
+    def cell(i, j, k):
+        return i + n[0] * (j + n[1] * k)
+
+    def quad(axis, i, j, k):
+        # Corners of the face at index (i, j, k) across `axis`, normal +axis.
+        if axis == 0:
+            return [point(i, j, k), point(i, j + 1, k), point(i, j + 1, k + 1), point(i, j, k + 1)]
+        if axis == 1:
+            return [point(i, j, k), point(i, j, k + 1), point(i + 1, j, k + 1), point(i + 1, j, k)]
+        return [point(i, j, k), point(i + 1, j, k), point(i + 1, j + 1, k), point(i, j + 1, k)]
+
+    internal, boundary = [], []
+    for axis in range(3):
+        for k in range(n[2] + (axis == 2)):
+            for j in range(n[1] + (axis == 1)):
+                for i in range(n[0] + (axis == 0)):
+                    idx = [i, j, k]
+                    below, above = list(idx), list(idx)
+                    below[axis] -= 1
+                    face = quad(axis, i, j, k)
+                    if idx[axis] == 0:
+                        boundary.append((face[::-1], cell(*above), None))
+                    elif idx[axis] == n[axis]:
+                        boundary.append((face, cell(*below), None))
+                    else:
+                        internal.append((face, cell(*below), cell(*above)))
+    faces = internal + boundary
+    points = [(i * h, j * h, k * h) for k in range(n[2] + 1) for j in range(n[1] + 1) for i in range(n[0] + 1)]
+    ncells = n[0] * n[1] * n[2]
+
+    def write(path, cls, body):
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(f"FoamFile\n{{\n    format ascii;\n    class {cls};\n}}\n{body}\n")
+
+    mesh = case / "constant" / "polyMesh"
+    write(mesh / "points", "vectorField", f"{len(points)}\n(\n" + "\n".join(f"({x} {y} {z})" for x, y, z in points) + "\n)")
+    write(mesh / "faces", "faceList", f"{len(faces)}\n(\n" + "\n".join("4(" + " ".join(map(str, f)) + ")" for f, _, _ in faces) + "\n)")
+    write(mesh / "owner", "labelList", f"{len(faces)}\n(\n" + "\n".join(str(o) for _, o, _ in faces) + "\n)")
+    write(mesh / "neighbour", "labelList", f"{len(internal)}\n(\n" + "\n".join(str(nb) for _, _, nb in internal) + "\n)")
+    write(case / "system" / "controlDict", "dictionary", "application icoFoam;")
+    write(case / "0" / "c", "volScalarField", "internalField uniform 0;\nboundaryField { }")
+    values = "\n".join(["0.5"] * ncells)
+    write(case / "1" / "c", "volScalarField", f"internalField nonuniform List<scalar> {ncells}\n(\n{values}\n);\nboundaryField {{ }}")
+
+
+@pytest.mark.parametrize("renderer", ["cpu", "gpu"])
+def test_an_openfoam_box_is_the_same_closed_form(tmp_path, renderer):
+    """The box read from an OpenFOAM case (its folder): time 1 (0.5 in
+    every cell, averaged to 0.5 at every point) is Beer-Lambert's image;
+    time 0 is clear."""
+    if renderer != "cpu":
+        gpu_or_skip()
+    case = tmp_path / "box"
+    write_openfoam_box(case)
+    common = dict(size=SIZE, renderer=renderer, camera=CAMERA, cmap=[RGB], opacity=[0.0, 2 * ALPHA],
+                  clim=(0.0, 1.0), unit_distance=1.0, opacity_mode="exact")
+    image = tetray.render(str(case), "c", time=1.0, **common)
+    want, checked = expected()
+    error = np.abs(image - want)[checked].max()
+    assert error < TOLERANCE, f"{renderer}: worst pixel off by {error}"
+    assert np.abs(tetray.render(str(case), "c", time_step=0, **common)).max() == 0.0
+    info = tetray.Scene(str(case), "c", size=(8, 8), renderer="cpu").info
+    assert info["components"] == 1 and info["tets"] == 128 * 6, info

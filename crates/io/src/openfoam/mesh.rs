@@ -52,6 +52,12 @@ pub(super) fn read_poly_mesh(folder: &Path) -> Result<CellGrid, OpenFoamError> {
             (c >= 0.0 && c < u32::MAX as f64).then(|| n.max(c as usize + 1))
         })
         .ok_or_else(|| invalid("a negative or huge cell label in owner or neighbour".into()))?;
+    // Every cell has at least four faces, each face at most two cells.
+    if ncells > nfaces / 2 {
+        return Err(invalid(format!(
+            "owner and neighbour name {ncells} cells, more than {nfaces} faces can bound"
+        )));
+    }
     // Each cell's faces, outward: owned faces as stored, neighboured ones
     // reversed.
     let mut count = vec![0usize; ncells + 1];
