@@ -35,7 +35,7 @@ struct Sample {
     tets: u64,
 }
 
-const VOLUMES: [Sample; 13] = [
+const VOLUMES: [Sample; 14] = [
     // 7472 hexahedra, 6 tetrahedra each.
     Sample {
         name: "disk_out_ref.ex2",
@@ -129,6 +129,17 @@ const VOLUMES: [Sample; 13] = [
         vtk_volume_cells: 400,
         points: 882,
         tets: 2400,
+    },
+    // EnSight Gold, every element type: 8 volume cells of 16 (VTK's
+    // vtkGenericEnSightReader: 108 + 4 points in two parts, 16 cells);
+    // the quadratic cells and the polyhedron add their centres (11
+    // points), the linear tetrahedron is kept, 7 cells give 107.
+    Sample {
+        name: "ensight/elements.case",
+        vtk_points: 112,
+        vtk_volume_cells: 8,
+        points: 123,
+        tets: 108,
     },
     // A ParaView file series over three VTKHDF steps: the first step,
     // crushed less, has no tangled cell (4800 x 6).

@@ -18,15 +18,17 @@ pub struct MeshArgs {
     /// data), .vtu, .vts, .vtr, .vti, their parallel forms .pvtu, .pvts,
     /// .pvtr, .pvti, multi-block .vtm, Exodus II (.e, .exo, .ex2, .exii, .g,
     /// .gen), VTKHDF (.vtkhdf, .hdf), an OpenFOAM case (its folder,
-    /// system/controlDict or a .foam file), a PLOT3D grid (*xyz.bin, *.xyz,
-    /// *.x), or a time series of them (*.series, .pvd). Default: the
+    /// system/controlDict or a .foam file), EnSight Gold (.case), a PLOT3D
+    /// grid (*xyz.bin, *.xyz, *.x), or a time series of them (*.series,
+    /// .pvd). Default: the
     /// embedded Blunt Fin (PLOT3D, NASA).
     pub mesh: Option<PathBuf>,
     /// PLOT3D solution (q) file. Default: the grid's name with "xyz"
     /// replaced by "q" (postxyz.bin -> postq.bin), when it exists.
     #[arg(long, value_name = "FILE")]
     pub q: Option<PathBuf>,
-    /// Files with time steps (Exodus II, VTKHDF, OpenFOAM, *.series, .pvd):
+    /// Files with time steps (Exodus II, VTKHDF, OpenFOAM, EnSight, *.series,
+    /// .pvd):
     /// the time step to read, counted from 0 (default: 0).
     #[arg(long, value_name = "N", conflicts_with = "time")]
     pub time_step: Option<usize>,

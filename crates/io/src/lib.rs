@@ -24,6 +24,7 @@ mod error;
 mod load;
 mod probe;
 
+pub mod ensight;
 pub mod exodus;
 pub mod generate;
 pub mod openfoam;
@@ -34,6 +35,7 @@ pub mod time;
 pub mod vtk;
 pub mod vtkhdf;
 
+pub use ensight::{EnSightError, EnSightOptions, EnSightRead, read_ensight};
 pub use error::IoError;
 pub use exodus::{ExodusError, ExodusOptions, ExodusRead, read_exodus_bytes, read_exodus_file};
 pub use load::{

@@ -9,6 +9,7 @@ use glam::DVec3;
 use tetray_mesh::cells::{CellCounts, CellGrid};
 use tetray_mesh::{LoadedMesh, MeshRead, finish};
 
+use crate::ensight::{EnSightOptions, read_ensight};
 use crate::exodus::{ExodusOptions, ExodusRead, read_exodus_file};
 use crate::openfoam::{OpenFoamOptions, read_openfoam};
 use crate::plot3d::{Plot3dRead, read_plot3d_bytes, read_plot3d_files};
@@ -61,7 +62,8 @@ pub fn plot3d_q_sibling(xyz: &Path) -> Option<PathBuf> {
 /// file `.e`, `.exo`, `.ex2`, `.exii`, `.g`, `.gen`, `.e-s*`, VTKHDF
 /// `.vtkhdf` (and `.hdf`, `.hdf5`, `.h5` holding a `/VTKHDF` group), a
 /// PLOT3D grid `*xyz.bin`, `*.xyz`, `*.x`, an OpenFOAM case (its folder,
-/// `system/controlDict` or a `.foam` marker), or a time series of any of them,
+/// `system/controlDict` or a `.foam` marker), EnSight Gold `.case`, or a
+/// time series of any of them,
 /// `*.series` or `.pvd`), then orients, validates and builds the topology
 /// (see [`tetray_mesh::prepare`]).
 ///
@@ -142,6 +144,19 @@ fn read_file(path: &Path, opts: &LoadOptions) -> Result<MeshRead, IoError> {
             read
         }
         Format::Series => read_series_step(path, opts)?,
+        Format::EnSight => {
+            let opts = EnSightOptions {
+                time_step: opts.time_step,
+                time: opts.time,
+                linearize: opts.linearize,
+            };
+            let read = read_ensight(path, &opts)?;
+            MeshRead {
+                times: read.times,
+                time_step: read.time_step,
+                ..from_vtk(read.read, "EnSight Gold")
+            }
+        }
         Format::OpenFoam => {
             let foam = OpenFoamOptions {
                 time_step: opts.time_step,

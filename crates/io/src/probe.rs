@@ -29,6 +29,8 @@ pub(crate) enum Format {
     Series,
     /// An OpenFOAM case: its folder, `controlDict` or a `.foam` marker.
     OpenFoam,
+    /// An EnSight Gold case file (`.case`).
+    EnSight,
 }
 
 /// What the cells of a file are.
@@ -64,6 +66,7 @@ impl Probe {
             Format::Hdf5 => "HDF5",
             Format::Series => "file series",
             Format::OpenFoam => "OpenFOAM",
+            Format::EnSight => "EnSight Gold",
         }
     }
 }
@@ -145,6 +148,8 @@ pub(crate) fn format_of(path: &Path) -> Option<Format> {
     let ext = name.rsplit_once('.').map_or("", |(_, e)| e);
     if crate::series::is_series_name(&name) {
         Some(Format::Series)
+    } else if ext == "case" {
+        Some(Format::EnSight)
     } else if ["foam", "openfoam"].contains(&ext) || name == "controldict" {
         Some(Format::OpenFoam)
     } else if ext == "vtk" {
@@ -201,8 +206,13 @@ fn format_of_content(head: &[u8]) -> Option<Format> {
     if crate::series::is_series_content(head) {
         return Some(Format::Series);
     }
-    if String::from_utf8_lossy(head).contains("FoamFile") {
+    let text = String::from_utf8_lossy(head);
+    if text.contains("FoamFile") {
         return Some(Format::OpenFoam);
+    }
+    let lower = text.to_lowercase();
+    if lower.contains("format") && lower.contains("ensight gold") {
+        return Some(Format::EnSight);
     }
     match xml_type(head)?.as_str() {
         "UnstructuredGrid" | "StructuredGrid" | "RectilinearGrid" | "ImageData" => {

@@ -335,3 +335,39 @@ def test_an_openfoam_box_is_the_same_closed_form(tmp_path, renderer):
     assert np.abs(tetray.render(str(case), "c", time_step=0, **common)).max() == 0.0
     info = tetray.Scene(str(case), "c", size=(8, 8), renderer="cpu").info
     assert info["components"] == 1 and info["tets"] == 128 * 6, info
+
+
+def write_ensight_box(folder):
+    """The box [0, 2] x [0, 1] x [0, 1] as an ASCII EnSight Gold case: one
+    uniform block of 9 x 5 x 5 points, "c" per node 0 at time 0 and 0.5 at
+    time 1 (files c.0000 and c.0001 of a time set)."""
+    folder.mkdir(parents=True, exist_ok=True)
+    n = 9 * 5 * 5
+    geo = ["written by a test", "a box", "node id off", "element id off", "part", "1", "box",
+           "block uniform", "9 5 5", "0.0", "0.0", "0.0", "0.25", "0.25", "0.25"]
+    (folder / "box.geo").write_text("\n".join(geo) + "\n")
+    for step, value in ((0, 0.0), (1, 0.5)):
+        lines = ["c", "part", "1", "block"] + [f"{value:12.5e}"] * n
+        (folder / f"c.{step:04d}").write_text("\n".join(lines) + "\n")
+    (folder / "box.case").write_text(
+        "FORMAT\ntype: ensight gold\nGEOMETRY\nmodel: box.geo\nVARIABLE\nscalar per node: 1 c c.****\n"
+        "TIME\ntime set: 1\nnumber of steps: 2\nfilename start number: 0\nfilename increment: 1\n"
+        "time values: 0 1\n"
+    )
+
+
+@pytest.mark.parametrize("renderer", ["cpu", "gpu"])
+def test_an_ensight_box_is_the_same_closed_form(tmp_path, renderer):
+    """The box read from an EnSight Gold case: time 1 is Beer-Lambert's
+    image, time 0 is clear."""
+    if renderer != "cpu":
+        gpu_or_skip()
+    write_ensight_box(tmp_path)
+    case = str(tmp_path / "box.case")
+    common = dict(size=SIZE, renderer=renderer, camera=CAMERA, cmap=[RGB], opacity=[0.0, 2 * ALPHA],
+                  clim=(0.0, 1.0), unit_distance=1.0, opacity_mode="exact")
+    image = tetray.render(case, "c", time=1.0, **common)
+    want, checked = expected()
+    error = np.abs(image - want)[checked].max()
+    assert error < TOLERANCE, f"{renderer}: worst pixel off by {error}"
+    assert np.abs(tetray.render(case, "c", time_step=0, **common)).max() == 0.0
