@@ -444,3 +444,81 @@ fn a_decomposed_case_is_welded() {
     assert_eq!(at(&got, "p"), at(&want, "p"));
     assert_eq!(at(&got, "U_magnitude"), at(&want, "U_magnitude"));
 }
+
+/// Every byte of each file of a binary case overwritten in turn (0x00,
+/// 0xff, a flipped bit): an error naming the case, or a read; never a
+/// panic.
+#[test]
+fn every_corrupted_byte_is_an_error_or_a_read() {
+    let style = Style {
+        binary: true,
+        label64: false,
+        scalar32: false,
+        gzip_points: false,
+    };
+    let dir = scratch("corrupt");
+    write_case(&dir, style);
+    let opts = LoadOptions {
+        time_step: Some(1),
+        ..LoadOptions::default()
+    };
+    for file in [
+        "constant/polyMesh/points",
+        "constant/polyMesh/faces",
+        "constant/polyMesh/owner",
+        "constant/polyMesh/neighbour",
+        "1/p",
+        "1/U",
+    ] {
+        let bytes = std::fs::read(dir.join(file)).unwrap();
+        let mut copy = bytes.clone();
+        for at in 0..bytes.len() {
+            for value in [0x00, 0xff, bytes[at] ^ 0x01] {
+                copy[at] = value;
+                std::fs::write(dir.join(file), &copy).unwrap();
+                if let Err(e) = load(&dir, &opts) {
+                    assert!(e.to_string().contains("corrupt"), "{file} at {at}: {e}");
+                }
+            }
+            copy[at] = bytes[at];
+        }
+        std::fs::write(dir.join(file), &bytes).unwrap();
+    }
+}
+
+/// Tutorial cases set initial fields through macros: `$name` defined
+/// above in the file is read; one defined in an `#include`d file (not
+/// followed) leaves that field out with a warning naming it.
+#[test]
+fn macro_values_are_read_or_named() {
+    let style = Style {
+        binary: false,
+        label64: false,
+        scalar32: false,
+        gzip_points: false,
+    };
+    let dir = scratch("macros");
+    write_case(&dir, style);
+    let mut u = header(style, "volVectorField");
+    u.extend(b"flowVelocity (1 2 2);\ninternalField   uniform $flowVelocity;\n");
+    std::fs::write(dir.join("0/U"), u).unwrap();
+    let mut p = header(style, "volScalarField");
+    p.extend(b"#include \"include/initialConditions\"\ninternalField   uniform $pressure;\n");
+    std::fs::write(dir.join("0/p"), p).unwrap();
+    let loaded = at_step(&dir, Some(0));
+    assert!(
+        field(&loaded, "U_magnitude")
+            .iter()
+            .all(|&v| (v - 3.0).abs() < 1e-6)
+    );
+    assert!(loaded.mesh.fields.iter().all(|f| f.name != "p"));
+    assert!(
+        loaded
+            .report
+            .warnings
+            .iter()
+            .any(|w| w.contains("$pressure")),
+        "{:?}",
+        loaded.report.warnings
+    );
+}

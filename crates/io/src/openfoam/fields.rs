@@ -47,7 +47,9 @@ pub(super) fn read_fields(
             }
             _ => continue,
         };
-        let values = internal_field(&file, width, ncells)?;
+        let Some(values) = internal_field(&file, width, ncells, &name, warnings)? else {
+            continue;
+        };
         out.push(CellArray {
             name,
             components: width,
@@ -59,9 +61,17 @@ pub(super) fn read_fields(
     Ok(out)
 }
 
-/// The `internalField` entry: `uniform v`, `uniform (x y z)`, or
-/// `nonuniform List<...> N (...)` with N the cell count.
-fn internal_field(file: &FoamFile, width: usize, ncells: usize) -> Result<Vec<f64>, OpenFoamError> {
+/// The `internalField` entry: `uniform v`, `uniform (x y z)`, `uniform
+/// $name` (a value the file defines above), or `nonuniform List<...> N
+/// (...)` with N the cell count. `None`, with a warning, for a `$name`
+/// defined elsewhere (an `#include`d file, which is not followed).
+fn internal_field(
+    file: &FoamFile,
+    width: usize,
+    ncells: usize,
+    name: &str,
+    warnings: &mut Vec<String>,
+) -> Result<Option<Vec<f64>>, OpenFoamError> {
     let mut at = 0;
     if !file.seek_keyword(&mut at, "internalField") {
         return Err(file.invalid(file.body, "no internalField".into()));
@@ -69,8 +79,26 @@ fn internal_field(file: &FoamFile, width: usize, ncells: usize) -> Result<Vec<f6
     let kind = file.word(&mut at);
     match kind.as_str() {
         "uniform" => {
-            let one = file.ascii_item(&mut at, width, "internalField")?;
-            Ok(one.iter().copied().cycle().take(ncells * width).collect())
+            let mut p = at;
+            file.skip_space(&mut p);
+            let one = if file.bytes.get(p) == Some(&b'$') {
+                let mut q = p + 1;
+                let macro_name = file.word(&mut q);
+                let mut def = 0;
+                if !(file.seek_keyword(&mut def, &macro_name) && def < p) {
+                    warnings.push(format!(
+                        "{name}: internalField is ${macro_name}, defined outside the file \
+                         (#include files are not followed): not read"
+                    ));
+                    return Ok(None);
+                }
+                file.ascii_item(&mut def, width, "internalField")?
+            } else {
+                file.ascii_item(&mut at, width, "internalField")?
+            };
+            Ok(Some(
+                one.iter().copied().cycle().take(ncells * width).collect(),
+            ))
         }
         "nonuniform" => {
             let list = file.word(&mut at);
@@ -87,7 +115,7 @@ fn internal_field(file: &FoamFile, width: usize, ncells: usize) -> Result<Vec<f6
                     ),
                 ));
             }
-            Ok(values)
+            Ok(Some(values))
         }
         other => Err(file.invalid(
             at,
