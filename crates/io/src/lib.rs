@@ -21,6 +21,7 @@
 //! of files.
 
 mod error;
+mod h5;
 mod load;
 mod probe;
 

@@ -7,8 +7,8 @@ use tetray_mesh::cells::{
     CellArray, CellGrid, add_cells, cell_count, extent_dims, image_points, point_count,
 };
 
+use super::H5;
 use super::VtkHdfError;
-use super::h5::H5;
 use super::steps::Steps;
 use crate::vtk::ImageGeometry;
 

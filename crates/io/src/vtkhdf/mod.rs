@@ -22,7 +22,6 @@
 //! assembly step as a `.vtu`. A file without a `Type` attribute is read by
 //! what it holds (cells, or an image's extent).
 
-mod h5;
 mod image;
 mod steps;
 mod unstructured;
@@ -34,7 +33,42 @@ use tetray_mesh::cells::{Linearize, ReadOptions, VtkRead};
 use crate::preflight::MemoryError;
 use crate::time::{StepError, choose_step, out_of_range};
 use crate::vtk::{ImageGrid, VtkError};
-use h5::H5;
+/// The HDF5 access, with this reader's errors.
+type H5 = crate::h5::H5<VtkHdfError>;
+
+impl crate::h5::H5Error for VtkHdfError {
+    fn io(file: String, source: std::io::Error) -> Self {
+        VtkHdfError::Io { file, source }
+    }
+    fn hdf5(file: String, what: String, message: String) -> Self {
+        VtkHdfError::Hdf5 {
+            file,
+            what,
+            message,
+        }
+    }
+    fn invalid(file: String, what: String, message: String) -> Self {
+        VtkHdfError::Invalid {
+            file,
+            what,
+            message,
+        }
+    }
+    fn missing(file: String, what: String) -> Self {
+        VtkHdfError::Missing { file, what }
+    }
+    fn truncated(file: String, what: String, expected: u64, found: u64) -> Self {
+        VtkHdfError::Truncated {
+            file,
+            what,
+            expected,
+            found,
+        }
+    }
+    fn memory(e: MemoryError) -> Self {
+        VtkHdfError::Memory(e)
+    }
+}
 
 /// Everything that can go wrong reading a VTKHDF file; each names the file.
 #[derive(Debug, thiserror::Error)]

@@ -1,8 +1,8 @@
 //! The `Steps` group of a temporal VTKHDF file: the times, and for each
 //! step where its data starts in the concatenated datasets.
 
+use super::H5;
 use super::VtkHdfError;
-use super::h5::H5;
 
 /// The steps of a file (none for a file without a `Steps` group).
 pub(super) struct Steps {

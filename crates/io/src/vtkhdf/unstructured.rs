@@ -4,8 +4,8 @@
 use hdf5_reader::group::Group;
 use tetray_mesh::cells::{CellArray, CellError, CellGrid, drop_ghosts, from_face_tables, weld};
 
+use super::H5;
 use super::VtkHdfError;
-use super::h5::H5;
 use super::steps::Steps;
 
 /// The per-partition counts of the file, all steps together.

@@ -10,44 +10,58 @@ use std::path::Path;
 use hdf5_reader::group::Group;
 use hdf5_reader::{Dataset, Datatype, Hdf5File, SliceInfo, SliceInfoElem};
 
-use super::VtkHdfError;
-use crate::preflight;
+use crate::preflight::{self, MemoryError};
 
-/// An open HDF5 file and the name used in messages.
-pub(super) struct H5 {
+/// How a reader of an HDF5-based format (VTKHDF, CGNS) words the
+/// failures of its container: each names the file and the object.
+pub(crate) trait H5Error: Sized {
+    fn io(file: String, source: std::io::Error) -> Self;
+    /// The container or an object could not be read.
+    fn hdf5(file: String, what: String, message: String) -> Self;
+    /// Content that breaks the format's rules.
+    fn invalid(file: String, what: String, message: String) -> Self;
+    /// An object the format requires is absent.
+    fn missing(file: String, what: String) -> Self;
+    /// Data the file's length cannot hold.
+    fn truncated(file: String, what: String, expected: u64, found: u64) -> Self;
+    fn memory(e: MemoryError) -> Self;
+}
+
+/// An open HDF5 file and the name used in messages; `E` is the reader's
+/// error type.
+pub(crate) struct H5<E> {
     file: Hdf5File,
     pub name: String,
     /// The file's length in bytes.
     len: u64,
+    error: std::marker::PhantomData<E>,
 }
 
-impl H5 {
-    pub fn open(path: &Path) -> Result<H5, VtkHdfError> {
+impl<E: H5Error> H5<E> {
+    pub fn open(path: &Path) -> Result<H5<E>, E> {
         let name = path.display().to_string();
         let len = std::fs::metadata(path)
-            .map_err(|source| VtkHdfError::Io {
-                file: name.clone(),
-                source,
-            })?
+            .map_err(|source| E::io(name.clone(), source))?
             .len();
-        let file = Hdf5File::open(path).map_err(|e| VtkHdfError::Hdf5 {
-            file: name.clone(),
-            what: "the HDF5 container".into(),
-            message: e.to_string(),
-        })?;
-        H5 { file, name, len }.whole()
+        let file = Hdf5File::open(path)
+            .map_err(|e| E::hdf5(name.clone(), "the HDF5 container".into(), e.to_string()))?;
+        H5 {
+            file,
+            name,
+            len,
+            error: std::marker::PhantomData,
+        }
+        .whole()
     }
 
-    pub fn from_bytes(bytes: &[u8], name: &str) -> Result<H5, VtkHdfError> {
-        let file = Hdf5File::from_bytes(bytes).map_err(|e| VtkHdfError::Hdf5 {
-            file: name.into(),
-            what: "the HDF5 container".into(),
-            message: e.to_string(),
-        })?;
+    pub fn from_bytes(bytes: &[u8], name: &str) -> Result<H5<E>, E> {
+        let file = Hdf5File::from_bytes(bytes)
+            .map_err(|e| E::hdf5(name.into(), "the HDF5 container".into(), e.to_string()))?;
         H5 {
             file,
             name: name.into(),
             len: bytes.len() as u64,
+            error: std::marker::PhantomData,
         }
         .whole()
     }
@@ -55,37 +69,29 @@ impl H5 {
     /// The file, when it is as long as its superblock says (a truncated
     /// file may still hold every object the reader needs, but not the data
     /// its writer put there).
-    fn whole(self) -> Result<H5, VtkHdfError> {
+    fn whole(self) -> Result<H5<E>, E> {
         let superblock = self.file.superblock();
         let end = superblock
             .base_address
             .checked_add(superblock.eof_address)
             .filter(|_| superblock.eof_address != u64::MAX);
         match end {
-            Some(end) if end > self.len => Err(VtkHdfError::Truncated {
-                file: self.name,
-                what: "the HDF5 superblock".into(),
-                expected: end,
-                found: self.len,
-            }),
+            Some(end) if end > self.len => Err(E::truncated(
+                self.name,
+                "the HDF5 superblock".into(),
+                end,
+                self.len,
+            )),
             _ => Ok(self),
         }
     }
 
-    pub fn hdf5_error(&self, what: &str, e: impl std::fmt::Display) -> VtkHdfError {
-        VtkHdfError::Hdf5 {
-            file: self.name.clone(),
-            what: what.into(),
-            message: e.to_string(),
-        }
+    pub fn hdf5_error(&self, what: &str, e: impl std::fmt::Display) -> E {
+        E::hdf5(self.name.clone(), what.into(), e.to_string())
     }
 
-    pub fn invalid(&self, what: &str, message: String) -> VtkHdfError {
-        VtkHdfError::Invalid {
-            file: self.name.clone(),
-            what: what.into(),
-            message,
-        }
+    pub fn invalid(&self, what: &str, message: String) -> E {
+        E::invalid(self.name.clone(), what.into(), message)
     }
 
     /// The group at `path` (absolute), or `None` when there is none.
@@ -94,11 +100,10 @@ impl H5 {
     }
 
     /// The group at `path`, which the format requires.
-    pub fn require_group(&self, path: &str) -> Result<Group, VtkHdfError> {
-        self.file.group(path).map_err(|_| VtkHdfError::Missing {
-            file: self.name.clone(),
-            what: format!("group {path}"),
-        })
+    pub fn require_group(&self, path: &str) -> Result<Group, E> {
+        self.file
+            .group(path)
+            .map_err(|_| E::missing(self.name.clone(), format!("group {path}")))
     }
 
     /// The dataset `name` of `group`, or `None`.
@@ -108,20 +113,14 @@ impl H5 {
 
     /// The dataset `name` of `group` (at `path`), which the format
     /// requires.
-    pub fn require_dataset(
-        &self,
-        group: &Group,
-        path: &str,
-        name: &str,
-    ) -> Result<Dataset, VtkHdfError> {
-        group.dataset(name).map_err(|_| VtkHdfError::Missing {
-            file: self.name.clone(),
-            what: format!("dataset {path}/{name}"),
-        })
+    pub fn require_dataset(&self, group: &Group, path: &str, name: &str) -> Result<Dataset, E> {
+        group
+            .dataset(name)
+            .map_err(|_| E::missing(self.name.clone(), format!("dataset {path}/{name}")))
     }
 
     /// The names of the datasets directly in `group`, in the file's order.
-    pub fn dataset_names(&self, group: &Group, path: &str) -> Result<Vec<String>, VtkHdfError> {
+    pub fn dataset_names(&self, group: &Group, path: &str) -> Result<Vec<String>, E> {
         let (_, datasets) = group.member_names().map_err(|e| self.hdf5_error(path, e))?;
         Ok(datasets)
     }
@@ -180,7 +179,7 @@ impl H5 {
         what: &str,
         start: usize,
         count: usize,
-    ) -> Result<(Vec<f64>, usize), VtkHdfError> {
+    ) -> Result<(Vec<f64>, usize), E> {
         self.rows(ds, what, start, count, Value::F64)
             .map(|(v, row)| (v.into_f64(), row))
     }
@@ -192,7 +191,7 @@ impl H5 {
         what: &str,
         start: usize,
         count: usize,
-    ) -> Result<(Vec<i64>, usize), VtkHdfError> {
+    ) -> Result<(Vec<i64>, usize), E> {
         let (values, row) = self.rows(ds, what, start, count, Value::I64)?;
         match values {
             Values::I64(v) => Ok((v, row)),
@@ -204,13 +203,13 @@ impl H5 {
     }
 
     /// The whole of a one-dimensional integer dataset.
-    pub fn all_i64(&self, ds: &Dataset, what: &str) -> Result<Vec<i64>, VtkHdfError> {
+    pub fn all_i64(&self, ds: &Dataset, what: &str) -> Result<Vec<i64>, E> {
         let rows = Self::shape(ds).first().copied().unwrap_or(1);
         Ok(self.rows_i64(ds, what, 0, rows)?.0)
     }
 
     /// The whole of a one-dimensional numeric dataset as f64.
-    pub fn all_f64(&self, ds: &Dataset, what: &str) -> Result<Vec<f64>, VtkHdfError> {
+    pub fn all_f64(&self, ds: &Dataset, what: &str) -> Result<Vec<f64>, E> {
         let rows = Self::shape(ds).first().copied().unwrap_or(1);
         Ok(self.rows_f64(ds, what, 0, rows)?.0)
     }
@@ -222,7 +221,7 @@ impl H5 {
         start: usize,
         count: usize,
         want: Value,
-    ) -> Result<(Values, usize), VtkHdfError> {
+    ) -> Result<(Values, usize), E> {
         let shape = Self::shape(ds);
         if let Some(max) = ds.max_dims()
             && let Some(axis) = (0..shape.len()).find(|&a| {
@@ -266,12 +265,12 @@ impl H5 {
         if ds.chunks().is_none() {
             // Stored as it is: the bytes must be in the file.
             if stored > self.len {
-                return Err(VtkHdfError::Truncated {
-                    file: self.name.clone(),
-                    what: what.into(),
-                    expected: stored,
-                    found: self.len,
-                });
+                return Err(E::truncated(
+                    self.name.clone(),
+                    what.into(),
+                    stored,
+                    self.len,
+                ));
             }
         } else {
             // Chunked data may be compressed: the file's length says
@@ -281,7 +280,8 @@ impl H5 {
                 &self.name,
                 || format!("{what} ({values} values)"),
                 result.saturating_add(stored),
-            )?;
+            )
+            .map_err(E::memory)?;
         }
         if count == 0 || row == 0 {
             return Ok((want.empty(ds.dtype()), row));
