@@ -18,9 +18,9 @@ pub struct MeshArgs {
     /// data), .vtu, .vts, .vtr, .vti, their parallel forms .pvtu, .pvts,
     /// .pvtr, .pvti, multi-block .vtm, Exodus II (.e, .exo, .ex2, .exii, .g,
     /// .gen), VTKHDF (.vtkhdf, .hdf), an OpenFOAM case (its folder,
-    /// system/controlDict or a .foam file), EnSight Gold (.case), a PLOT3D
-    /// grid (*xyz.bin, *.xyz, *.x), or a time series of them (*.series,
-    /// .pvd). Default: the
+    /// system/controlDict or a .foam file), EnSight Gold (.case), CGNS
+    /// (.cgns, HDF5 storage), a PLOT3D grid (*xyz.bin, *.xyz, *.x), or a
+    /// time series of them (*.series, .pvd). Default: the
     /// embedded Blunt Fin (PLOT3D, NASA).
     pub mesh: Option<PathBuf>,
     /// PLOT3D solution (q) file. Default: the grid's name with "xyz"

@@ -33,6 +33,10 @@ pub enum IoError {
     #[error(transparent)]
     VtkHdf(#[from] VtkHdfError),
 
+    /// The CGNS reader failed.
+    #[error(transparent)]
+    Cgns(#[from] crate::cgns::CgnsError),
+
     /// The EnSight Gold reader failed.
     #[error(transparent)]
     EnSight(#[from] crate::ensight::EnSightError),
@@ -59,7 +63,7 @@ pub enum IoError {
         "{file}: unknown mesh format ({seen}): expected .vtk, .vtu, .vts, .vtr, .vti, \
          .pvtu, .pvts, .pvtr, .pvti, .vtm, an Exodus II file (.e, .exo, .ex2, .exii, .g, \
          .gen, .e-s*), VTKHDF (.vtkhdf, .hdf, .h5), an OpenFOAM case (its folder, \
-         system/controlDict or a .foam file), EnSight Gold (.case), a PLOT3D grid (name ending in \
+         system/controlDict or a .foam file), EnSight Gold (.case), CGNS (.cgns), a PLOT3D grid (name ending in \
          xyz.bin, .xyz or .x) or a file series (.series, .pvd)"
     )]
     UnknownFormat {

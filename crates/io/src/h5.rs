@@ -125,6 +125,12 @@ impl<E: H5Error> H5<E> {
         Ok(datasets)
     }
 
+    /// The names of the groups directly in `group`, in the file's order.
+    pub fn group_names(&self, group: &Group, path: &str) -> Result<Vec<String>, E> {
+        let (groups, _) = group.member_names().map_err(|e| self.hdf5_error(path, e))?;
+        Ok(groups)
+    }
+
     /// A string attribute of `group`, or `None` when it has none.
     pub fn string_attribute(&self, group: &Group, name: &str) -> Option<String> {
         let attribute = group.attribute(name).ok()?;

@@ -25,6 +25,7 @@ mod h5;
 mod load;
 mod probe;
 
+pub mod cgns;
 pub mod ensight;
 pub mod exodus;
 pub mod generate;
@@ -36,6 +37,7 @@ pub mod time;
 pub mod vtk;
 pub mod vtkhdf;
 
+pub use cgns::{CgnsError, CgnsOptions, CgnsRead, read_cgns};
 pub use ensight::{EnSightError, EnSightOptions, EnSightRead, read_ensight};
 pub use error::IoError;
 pub use exodus::{ExodusError, ExodusOptions, ExodusRead, read_exodus_bytes, read_exodus_file};

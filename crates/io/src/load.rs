@@ -9,6 +9,7 @@ use glam::DVec3;
 use tetray_mesh::cells::{CellCounts, CellGrid};
 use tetray_mesh::{LoadedMesh, MeshRead, finish};
 
+use crate::cgns::{CgnsOptions, read_cgns};
 use crate::ensight::{EnSightOptions, read_ensight};
 use crate::exodus::{ExodusOptions, ExodusRead, read_exodus_file};
 use crate::openfoam::{OpenFoamOptions, read_openfoam};
@@ -62,7 +63,8 @@ pub fn plot3d_q_sibling(xyz: &Path) -> Option<PathBuf> {
 /// file `.e`, `.exo`, `.ex2`, `.exii`, `.g`, `.gen`, `.e-s*`, VTKHDF
 /// `.vtkhdf` (and `.hdf`, `.hdf5`, `.h5` holding a `/VTKHDF` group), a
 /// PLOT3D grid `*xyz.bin`, `*.xyz`, `*.x`, an OpenFOAM case (its folder,
-/// `system/controlDict` or a `.foam` marker), EnSight Gold `.case`, or a
+/// `system/controlDict` or a `.foam` marker), EnSight Gold `.case`, CGNS
+/// `.cgns` (HDF5 storage), or a
 /// time series of any of them,
 /// `*.series` or `.pvd`), then orients, validates and builds the topology
 /// (see [`tetray_mesh::prepare`]).
@@ -144,6 +146,12 @@ fn read_file(path: &Path, opts: &LoadOptions) -> Result<MeshRead, IoError> {
             read
         }
         Format::Series => read_series_step(path, opts)?,
+        Format::Cgns => {
+            let cgns = CgnsOptions {
+                linearize: opts.linearize,
+            };
+            from_vtk(read_cgns(path, &cgns)?.read, "CGNS")
+        }
         Format::EnSight => {
             let opts = EnSightOptions {
                 time_step: opts.time_step,

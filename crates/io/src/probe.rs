@@ -1,7 +1,7 @@
 //! What a file holds, before reading it: its format by the file's name, and
 //! by its first bytes where the name does not say (a legacy VTK header, a
 //! VTK XML root element, a netCDF or HDF5 signature); an HDF5 file is told
-//! apart by its groups (VTKHDF's `/VTKHDF`, else netCDF-4, read as Exodus
+//! apart by its groups (VTKHDF's `/VTKHDF`, a CGNS tree, else netCDF-4, read as Exodus
 //! II); and whether it is image data, which shear-warp renders as the
 //! regular grid it is.
 
@@ -31,6 +31,8 @@ pub(crate) enum Format {
     OpenFoam,
     /// An EnSight Gold case file (`.case`).
     EnSight,
+    /// CGNS (`.cgns`; HDF5 storage, the ADF storage recognised).
+    Cgns,
 }
 
 /// What the cells of a file are.
@@ -67,6 +69,7 @@ impl Probe {
             Format::Series => "file series",
             Format::OpenFoam => "OpenFOAM",
             Format::EnSight => "EnSight Gold",
+            Format::Cgns => "CGNS",
         }
     }
 }
@@ -135,6 +138,7 @@ pub(crate) fn format_for(path: &Path) -> Result<(Format, bool, Vec<u8>), IoError
     };
     let format = match format {
         Format::Hdf5 if crate::vtkhdf::is_vtkhdf(path) => Format::VtkHdf,
+        Format::Hdf5 if crate::cgns::is_cgns(path) => Format::Cgns,
         // netCDF-4 is HDF5: Exodus II files are written so.
         Format::Hdf5 => Format::Exodus,
         other => other,
@@ -148,6 +152,8 @@ pub(crate) fn format_of(path: &Path) -> Option<Format> {
     let ext = name.rsplit_once('.').map_or("", |(_, e)| e);
     if crate::series::is_series_name(&name) {
         Some(Format::Series)
+    } else if ["cgns", "adf"].contains(&ext) {
+        Some(Format::Cgns)
     } else if ext == "case" {
         Some(Format::EnSight)
     } else if ["foam", "openfoam"].contains(&ext) || name == "controldict" {
@@ -202,6 +208,9 @@ fn format_of_content(head: &[u8]) -> Option<Format> {
     }
     if head.starts_with(b"\x89HDF\r\n\x1a\n") {
         return Some(Format::Hdf5);
+    }
+    if crate::cgns::is_adf(head) {
+        return Some(Format::Cgns);
     }
     if crate::series::is_series_content(head) {
         return Some(Format::Series);

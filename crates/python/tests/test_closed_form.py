@@ -371,3 +371,45 @@ def test_an_ensight_box_is_the_same_closed_form(tmp_path, renderer):
     error = np.abs(image - want)[checked].max()
     assert error < TOLERANCE, f"{renderer}: worst pixel off by {error}"
     assert np.abs(tetray.render(case, "c", time_step=0, **common)).max() == 0.0
+
+
+def write_cgns_box(path):
+    """The box [0, 2] x [0, 1] x [0, 1] as CGNS (HDF5 storage, written with
+    h5py): one structured zone of 9 x 5 x 5 vertices, "c" = 0.5 at the
+    vertices."""
+    import h5py
+
+    def node(parent, name, label, kind, data=None):
+        g = parent.create_group(name)
+        g.attrs.create("name", np.bytes_(name))
+        g.attrs.create("label", np.bytes_(label))
+        g.attrs.create("type", np.bytes_(kind))
+        if data is not None:
+            g.create_dataset(" data", data=data)
+        return g
+
+    with h5py.File(path, "w") as f:
+        base = node(f, "Base", "CGNSBase_t", "I4", np.array([3, 3], dtype="i4"))
+        zone = node(base, "Box", "Zone_t", "I4", np.array([[9, 5, 5], [8, 4, 4], [0, 0, 0]], dtype="i4"))
+        node(zone, "ZoneType", "ZoneType_t", "C1", np.frombuffer(b"Structured", dtype="i1"))
+        # Arrays in Fortran order: HDF5 shape (k, j, i).
+        k, j, i = np.meshgrid(np.arange(5), np.arange(5), np.arange(9), indexing="ij")
+        coords = node(zone, "GridCoordinates", "GridCoordinates_t", "MT")
+        for name, v in (("CoordinateX", i), ("CoordinateY", j), ("CoordinateZ", k)):
+            node(coords, name, "DataArray_t", "R8", 0.25 * v.astype("f8"))
+        solution = node(zone, "FlowSolution", "FlowSolution_t", "MT")
+        node(solution, "GridLocation", "GridLocation_t", "C1", np.frombuffer(b"Vertex", dtype="i1"))
+        node(solution, "c", "DataArray_t", "R8", np.full((5, 5, 9), 0.5))
+
+
+@pytest.mark.parametrize("renderer", ["cpu", "gpu"])
+def test_a_cgns_box_is_the_same_closed_form(tmp_path, renderer):
+    """The box read from a CGNS file is Beer-Lambert's image."""
+    if renderer != "cpu":
+        gpu_or_skip()
+    path = tmp_path / "box.cgns"
+    write_cgns_box(path)
+    image = render(str(path), renderer)
+    want, checked = expected()
+    error = np.abs(image - want)[checked].max()
+    assert error < TOLERANCE, f"{renderer}: worst pixel off by {error}"
