@@ -67,7 +67,7 @@ pub(super) fn read_zone(
     }
     let mut grid = CellGrid {
         points: (0..x.len()).flat_map(|i| [x[i], y[i], z[i]]).collect(),
-        points_section: format!("{coords}"),
+        points_section: coords.clone(),
         ..CellGrid::default()
     };
     let structured = kind.eq_ignore_ascii_case("Structured");
