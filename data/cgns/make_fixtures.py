@@ -7,7 +7,8 @@ arrays in Fortran order, so the HDF5 shape is reversed):
 - structured.cgns: one structured zone of 4 x 3 x 2 vertices (x = i, y = j,
   z = k), a CellCenter solution "cell" with one rind layer on every side:
   interior cells hold their index i + 3 j (0 .. 5), rind cells hold -1; a
-  Vertex solution "f" = x + 2y + 3z.
+  Vertex solution "f" = x + 2y + 3z and "VelocityX", "VelocityY",
+  "VelocityZ" = 3, 4, 0.
 - unstructured.cgns: one unstructured zone: two unit cubes side by side
   along x as a HEXA_8 section (elements 1-2), a MIXED section with a
   pyramid on top of the first cube (apex (0.5, 0.5, 1.5)) and a tetrahedron
@@ -72,6 +73,8 @@ def structured():
         node(cells, "cell", "DataArray_t", "R8", stored)
         points = node(zone, "PointSolution", "FlowSolution_t", "MT")
         node(points, "f", "DataArray_t", "R4", (i + 2 * j + 3 * k).astype("f4"))
+        for name, v in (("VelocityX", 3.0), ("VelocityY", 4.0), ("VelocityZ", 0.0)):
+            node(points, name, "DataArray_t", "R8", np.full(i.shape, v))
 
 
 def unstructured():

@@ -43,6 +43,9 @@ fn the_multi_zone_solution_reads_with_vtks_counts() {
         "MomentumX",
         "EnergyStagnationDensity",
         "TurbulentSANuTilde",
+        // MomentumX, Y and Z also make the vector Momentum, as VTK reads
+        // them.
+        "Momentum_magnitude",
     ] {
         field(&m, name);
     }
@@ -55,7 +58,7 @@ fn the_multi_zone_solution_reads_with_vtks_counts() {
 }
 
 /// A structured zone: points x = i, y = j, z = k; f = x + 2y + 3z at the
-/// vertices (exact); a cell-centred array with one rind layer on every
+/// vertices (exact), and Velocity X, Y, Z joined into a vector; a cell-centred array with one rind layer on every
 /// side whose interior holds 0 .. 5 and rind -1: averaged at the points,
 /// no rind value shows (all within 0 .. 5; a corner point has its one
 /// cell's value).
@@ -71,6 +74,9 @@ fn a_structured_zone_strips_its_rind() {
         let q = *p + origin;
         assert_eq!(f[k], q.x + 2.0 * q.y + 3.0 * q.z, "at {q}");
         assert!((0.0..=5.0).contains(&cell[k]), "at {q}: {}", cell[k]);
+        // VelocityX, Y, Z = (3, 4, 0) at every vertex: the vector's
+        // magnitude is 5.
+        assert_eq!(field(&m, "Velocity_magnitude")[k], 5.0);
         if q.x == 3.0 && q.y == 2.0 {
             // Only cell (2, 1): index 2 + 3 = 5.
             assert_eq!(cell[k], 5.0);

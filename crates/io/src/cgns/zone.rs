@@ -103,6 +103,8 @@ pub(super) fn read_zone(
     for solution in children(h5, zone, "FlowSolution_t")? {
         solution_arrays(h5, &solution, structured, vertex_dims, cell_dims, &mut grid)?;
     }
+    join_vectors(&mut grid.point_arrays);
+    join_vectors(&mut grid.cell_arrays);
     Ok(grid)
 }
 
@@ -261,6 +263,41 @@ fn solution_arrays(
         }
     }
     Ok(())
+}
+
+/// SIDS names a vector's components `<name>X`, `<name>Y`, `<name>Z`
+/// (`MomentumX`...): the three also make the vector `<name>`, whose
+/// magnitude the assembly adds, as VTK's CGNS reader joins them.
+fn join_vectors(arrays: &mut Vec<CellArray>) {
+    let mut vectors = Vec::new();
+    for a in arrays.iter() {
+        let Some(base) = a.name.strip_suffix('X').filter(|b| !b.is_empty()) else {
+            continue;
+        };
+        let find = |axis: &str| arrays.iter().find(|b| b.name == format!("{base}{axis}"));
+        let (Some(y), Some(z)) = (find("Y"), find("Z")) else {
+            continue;
+        };
+        if arrays.iter().any(|b| b.name == base)
+            || a.components != 1
+            || y.values.len() != a.values.len()
+            || z.values.len() != a.values.len()
+        {
+            continue;
+        }
+        let values = (0..a.values.len())
+            .flat_map(|i| [a.values[i], y.values[i], z.values[i]])
+            .collect();
+        let defined = a.defined.clone();
+        vectors.push(CellArray {
+            name: base.to_string(),
+            components: 3,
+            values,
+            section: format!("{} (with Y and Z)", a.section),
+            defined,
+        });
+    }
+    arrays.extend(vectors);
 }
 
 /// The product of sizes, `None` on overflow.
