@@ -16,7 +16,7 @@ use crate::openfoam::{OpenFoamOptions, read_openfoam};
 use crate::plot3d::{Plot3dRead, read_plot3d_bytes, read_plot3d_files};
 use crate::probe::{Format, format_for};
 use crate::series::{SeriesError, read_series};
-use crate::time::{StepError, choose_step, out_of_range};
+use crate::time::choose_step;
 use crate::vtkhdf::{VtkHdfOptions, VtkHdfRead, read_vtkhdf_file};
 use crate::{IoError, vtk};
 
@@ -183,17 +183,10 @@ fn read_file(path: &Path, opts: &LoadOptions) -> Result<MeshRead, IoError> {
         // Asked of a file without time steps: the same error as for any.
         choose_step(&[], opts.time_step, opts.time).map_err(|e| IoError::Time {
             file: path.display().to_string(),
-            message: step_message(e),
+            message: e.to_string(),
         })?;
     }
     Ok(read)
-}
-
-fn step_message(e: StepError) -> String {
-    match e {
-        StepError::OutOfRange { requested, count } => out_of_range(requested, count),
-        StepError::Time(message) => message,
-    }
 }
 
 /// The step of a series (`.series`, `.pvd`) chosen by `--time-step` or
@@ -208,7 +201,7 @@ fn read_series_step(path: &Path, opts: &LoadOptions) -> Result<MeshRead, IoError
         message,
     };
     let step = choose_step(&times, opts.time_step, opts.time)
-        .map_err(|e| fail(step_message(e)))?
+        .map_err(|e| fail(e.to_string()))?
         .unwrap_or(0);
     let files = &steps[step].files;
     // A step's file is read whole: its own steps, if any, are not the
@@ -399,7 +392,7 @@ pub fn load_image_grid(path: &Path, opts: &LoadOptions) -> Result<vtk::ImageGrid
     if opts.time_step.is_some() || opts.time.is_some() {
         choose_step(&[], opts.time_step, opts.time).map_err(|e| IoError::Time {
             file: path.display().to_string(),
-            message: step_message(e),
+            message: e.to_string(),
         })?;
     }
     Ok(vtk::read_image_grid(path)?)

@@ -1,13 +1,16 @@
 //! Which stored time step to read, the same way for every format: the one
 //! asked for by number, the one nearest a time asked for, else the first.
 
-/// Why no step could be chosen.
-#[derive(Debug, Clone, PartialEq)]
+/// Why no step could be chosen; its message is the one every reader
+/// gives after the file's name.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum StepError {
     /// A step number beyond those stored.
+    #[error("{}", out_of_range(*requested, *count))]
     OutOfRange { requested: usize, count: usize },
     /// A time asked of a file without times, a time that is not a number,
     /// or a step and a time both given.
+    #[error("{0}")]
     Time(String),
 }
 

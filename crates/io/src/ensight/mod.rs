@@ -14,7 +14,7 @@ use std::path::{Path, PathBuf};
 
 use tetray_mesh::cells::{Linearize, ReadOptions, VtkRead, weld};
 
-use crate::time::{StepError, choose_step, out_of_range};
+use crate::time::choose_step;
 use crate::vtk::VtkError;
 use source::Source;
 
@@ -229,10 +229,7 @@ pub fn read_ensight(path: &Path, opts: &EnSightOptions) -> Result<EnSightRead, E
     times.dedup();
     let step = choose_step(&times, opts.time_step, opts.time).map_err(|e| EnSightError::Time {
         file: name.clone(),
-        message: match e {
-            StepError::OutOfRange { requested, count } => out_of_range(requested, count),
-            StepError::Time(message) => message,
-        },
+        message: e.to_string(),
     })?;
     let time = step.map(|s| times[s]);
     let folder = path.parent().unwrap_or(Path::new("."));

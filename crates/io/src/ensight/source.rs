@@ -103,19 +103,7 @@ impl<'a> Source<'a> {
     pub fn ints(&mut self, n: usize, what: &str) -> Result<Vec<i64>, EnSightError> {
         self.fits(n, what)?;
         if self.binary {
-            let raw = &self.bytes[self.at..self.at + 4 * n];
-            self.at += 4 * n;
-            return Ok(raw
-                .chunks_exact(4)
-                .map(|c| {
-                    let b = [c[0], c[1], c[2], c[3]];
-                    i64::from(if self.big_endian {
-                        i32::from_be_bytes(b)
-                    } else {
-                        i32::from_le_bytes(b)
-                    })
-                })
-                .collect());
+            return Ok(self.words(n, i32::from_le_bytes, i32::from_be_bytes, i64::from));
         }
         let mut out = Vec::with_capacity(n);
         while out.len() < n {
@@ -151,19 +139,7 @@ impl<'a> Source<'a> {
     pub fn floats(&mut self, n: usize, what: &str) -> Result<Vec<f64>, EnSightError> {
         self.fits(n, what)?;
         if self.binary {
-            let raw = &self.bytes[self.at..self.at + 4 * n];
-            self.at += 4 * n;
-            return Ok(raw
-                .chunks_exact(4)
-                .map(|c| {
-                    let b = [c[0], c[1], c[2], c[3]];
-                    f64::from(if self.big_endian {
-                        f32::from_be_bytes(b)
-                    } else {
-                        f32::from_le_bytes(b)
-                    })
-                })
-                .collect());
+            return Ok(self.words(n, f32::from_le_bytes, f32::from_be_bytes, f64::from));
         }
         let mut out = Vec::with_capacity(n);
         while out.len() < n {
@@ -186,6 +162,23 @@ impl<'a> Source<'a> {
         }
         out.truncate(n);
         Ok(out)
+    }
+
+    /// `n` binary 4-byte values (already checked to fit), decoded in the
+    /// file's byte order and widened.
+    fn words<T, U>(
+        &mut self,
+        n: usize,
+        le: fn([u8; 4]) -> T,
+        be: fn([u8; 4]) -> T,
+        widen: fn(T) -> U,
+    ) -> Vec<U> {
+        let raw = &self.bytes[self.at..self.at + 4 * n];
+        self.at += 4 * n;
+        let decode = if self.big_endian { be } else { le };
+        raw.chunks_exact(4)
+            .map(|c| widen(decode([c[0], c[1], c[2], c[3]])))
+            .collect()
     }
 
     fn token(&mut self, what: &str) -> Result<String, EnSightError> {

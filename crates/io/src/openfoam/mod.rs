@@ -17,7 +17,7 @@ use std::path::{Path, PathBuf};
 
 use tetray_mesh::cells::{CellError, Linearize, ReadOptions, VtkRead, weld};
 
-use crate::time::{StepError, choose_step, out_of_range};
+use crate::time::choose_step;
 use crate::vtk::VtkError;
 
 /// Everything that can go wrong reading an OpenFOAM case; each names the
@@ -115,10 +115,7 @@ pub fn read_openfoam(path: &Path, opts: &OpenFoamOptions) -> Result<OpenFoamRead
     let times: Vec<f64> = folders.iter().map(|(t, _)| *t).collect();
     let step = choose_step(&times, opts.time_step, opts.time).map_err(|e| OpenFoamError::Time {
         file: name.clone(),
-        message: match e {
-            StepError::OutOfRange { requested, count } => out_of_range(requested, count),
-            StepError::Time(message) => message,
-        },
+        message: e.to_string(),
     })?;
     let folder = step.map(|s| folders[s].1.clone());
     let mut grids = Vec::with_capacity(roots.len());

@@ -31,7 +31,7 @@ use std::path::Path;
 use tetray_mesh::cells::{Linearize, ReadOptions, VtkRead};
 
 use crate::preflight::MemoryError;
-use crate::time::{StepError, choose_step, out_of_range};
+use crate::time::choose_step;
 use crate::vtk::{ImageGrid, VtkError};
 /// The HDF5 access, with this reader's errors.
 type H5 = crate::h5::H5<VtkHdfError>;
@@ -228,10 +228,7 @@ fn read(h5: &H5, opts: &VtkHdfOptions) -> Result<VtkHdfRead, VtkHdfError> {
     let time_step =
         choose_step(&steps.times, opts.time_step, opts.time).map_err(|e| VtkHdfError::Time {
             file: h5.name.clone(),
-            message: match e {
-                StepError::OutOfRange { requested, count } => out_of_range(requested, count),
-                StepError::Time(message) => message,
-            },
+            message: e.to_string(),
         })?;
     let read_opts = ReadOptions {
         linearize: opts.linearize,
