@@ -35,7 +35,7 @@ struct Sample {
     tets: u64,
 }
 
-const VOLUMES: [Sample; 15] = [
+const VOLUMES: [Sample; 16] = [
     // 7472 hexahedra, 6 tetrahedra each.
     Sample {
         name: "disk_out_ref.ex2",
@@ -141,10 +141,17 @@ const VOLUMES: [Sample; 15] = [
         points: 123,
         tets: 108,
     },
-    // CGNS, four structured zones of a CFL3D solution (the ADF original
-    // converted by adf2hdf; vtkCGNSReader: 58,576 vertices, 28,168
-    // cells), 1010 shared vertices welded; 12 flat tetrahedra of
-    // collapsed cells left out of 28,168 x 6.
+    // CGNS, four structured zones of a CFL3D solution in the ADF storage
+    // (vtkCGNSReader: 58,576 vertices, 28,168 cells), 1010 shared
+    // vertices welded; 12 flat tetrahedra of collapsed cells left out of
+    // 28,168 x 6; and its HDF5 twin converted by adf2hdf.
+    Sample {
+        name: "multi.cgns",
+        vtk_points: 58_576,
+        vtk_volume_cells: 28_168,
+        points: 57_566,
+        tets: 168_996,
+    },
     Sample {
         name: "multi-hdf5.cgns",
         vtk_points: 58_576,

@@ -15,9 +15,26 @@ arrays in Fortran order, so the HDF5 shape is reversed):
   on the pyramid's face 5-6-13 (fourth vertex (0, 0, 2)) (elements 3-4:
   volumes 1/6 and 1/12), and a
   QUAD_4 boundary face (element 5); Vertex solution "f" = x + 2y + 3z.
+- polyhedral.cgns: one unstructured zone of polyhedra: a unit cube and a
+  pyramid on its top (apex (0.5, 0.5, 1.5); volumes 1 and 1/6) as an
+  NFACE_n section (elements 11-12, face counts in the connectivity, as
+  CGNS 3 writes them) over an NGON_n section of their ten faces (elements
+  1-10, with ElementStartOffset, as CGNS 4 writes them); the pyramid names
+  the shared face with a minus sign (its normal points into the pyramid).
+  Vertex solution "f" = x + 2y + 3z, CellCenter solution "cell" = 1, 2.
+- temporal.cgns: a structured zone of 3 x 2 x 2 vertices with two time
+  steps (BaseIterativeData_t: times 0.5 and 1.5; ZoneIterativeData_t:
+  FlowSolutionPointers "Step0", "Step1" and GridCoordinatesPointers
+  "GridCoordinates", "Moved"): at step 0 the vertices are (i, j, k) and
+  "f" = i; at step 1 they are (i + 10, j, k) and "f" = 2 i.
+
+Each is also converted to CGNS's older ADF storage (<name>-adf.cgns) by
+CGNS's own hdf2adf when it is on PATH (Debian package cgns-convert).
 
 Run with h5py: python3 make_fixtures.py (writes into this folder)."""
 
+import shutil
+import subprocess
 from pathlib import Path
 
 import h5py
@@ -26,11 +43,21 @@ import numpy as np
 HERE = Path(__file__).resolve().parent
 
 
+def attribute(g, key, value, size):
+    """A fixed-length, null-terminated string of `size` characters, as the
+    CGNS library writes its node attributes."""
+    g.attrs.create(key, np.bytes_(value.ljust(size + 1, "\0")), dtype=f"S{size + 1}")
+
+
+def describe(g, name, label, kind):
+    attribute(g, "name", name, 32)
+    attribute(g, "label", label, 32)
+    attribute(g, "type", kind, 2)
+
+
 def node(parent, name, label, kind, data=None):
     g = parent.create_group(name)
-    g.attrs.create("name", np.bytes_(name.ljust(32, "\0")[:33]))
-    g.attrs.create("label", np.bytes_(label))
-    g.attrs.create("type", np.bytes_(kind))
+    describe(g, name, label, kind)
     g.attrs.create("flags", np.array([1], dtype="i4"))
     if data is not None:
         g.create_dataset(" data", data=data)
@@ -42,7 +69,9 @@ def text(s):
 
 
 def base(f):
+    describe(f, "HDF5 MotherNode", "Root Node of HDF5 File", "MT")
     f.create_dataset(" format", data=np.frombuffer(b"IEEE_LITTLE_32\0", dtype="i1"))
+    f.create_dataset(" hdf5version", data=np.frombuffer(b"HDF5 Version 1.10.8".ljust(33, b"\0"), dtype="i1"))
     node(f, "CGNSLibraryVersion", "CGNSLibraryVersion_t", "R4", np.array([4.2], dtype="f4"))
     return node(f, "Base", "CGNSBase_t", "I4", np.array([3, 3], dtype="i4"))
 
@@ -109,6 +138,72 @@ def unstructured():
         node(sol, "f", "DataArray_t", "R8", pts[:, 0] + 2 * pts[:, 1] + 3 * pts[:, 2])
 
 
+def polyhedral():
+    with h5py.File(HERE / "polyhedral.cgns", "w") as f:
+        b = base(f)
+        pts = np.array([
+            [0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0],
+            [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1],
+            [0.5, 0.5, 1.5],
+        ], dtype="f8")
+        zone = node(b, "Zone", "Zone_t", "I4", np.array([[len(pts)], [2], [0]], dtype="i4"))
+        node(zone, "ZoneType", "ZoneType_t", "C1", text("Unstructured"))
+        coordinates(zone, pts[:, 0], pts[:, 1], pts[:, 2])
+        # Faces by 1-based vertices, normals out of the cube, then out of
+        # the pyramid.
+        faces = [[1, 4, 3, 2], [5, 6, 7, 8], [1, 2, 6, 5], [2, 3, 7, 6], [3, 4, 8, 7],
+                 [4, 1, 5, 8], [5, 6, 9], [6, 7, 9], [7, 8, 9], [8, 5, 9]]
+        ngon = node(zone, "Faces", "Elements_t", "I4", np.array([22, 0], dtype="i4"))
+        node(ngon, "ElementRange", "IndexRange_t", "I4", np.array([1, 10], dtype="i4"))
+        node(ngon, "ElementConnectivity", "DataArray_t", "I4",
+             np.array([v for face in faces for v in face], dtype="i4"))
+        node(ngon, "ElementStartOffset", "DataArray_t", "I4",
+             np.cumsum([0] + [len(face) for face in faces]).astype("i4"))
+        nface = node(zone, "Cells", "Elements_t", "I4", np.array([23, 0], dtype="i4"))
+        node(nface, "ElementRange", "IndexRange_t", "I4", np.array([11, 12], dtype="i4"))
+        node(nface, "ElementConnectivity", "DataArray_t", "I4",
+             np.array([6, 1, 2, 3, 4, 5, 6, 5, -2, 7, 8, 9, 10], dtype="i4"))
+        sol = node(zone, "FlowSolution", "FlowSolution_t", "MT")
+        node(sol, "GridLocation", "GridLocation_t", "C1", text("Vertex"))
+        node(sol, "f", "DataArray_t", "R8", pts[:, 0] + 2 * pts[:, 1] + 3 * pts[:, 2])
+        cells = node(zone, "CellSolution", "FlowSolution_t", "MT")
+        node(cells, "GridLocation", "GridLocation_t", "C1", text("CellCenter"))
+        node(cells, "cell", "DataArray_t", "R8", np.array([1.0, 2.0]))
+
+
+def names(*words):
+    """A C1 array of 32-character names, as the pointers of iterative data."""
+    return np.frombuffer("".join(w.ljust(32) for w in words).encode(), dtype="i1").reshape(len(words), 32)
+
+
+def temporal():
+    with h5py.File(HERE / "temporal.cgns", "w") as f:
+        b = base(f)
+        ni, nj, nk = 3, 2, 2
+        it = node(b, "BaseIterativeData", "BaseIterativeData_t", "I4", np.array([2], dtype="i4"))
+        node(it, "TimeValues", "DataArray_t", "R8", np.array([0.5, 1.5]))
+        zone = node(b, "Zone", "Zone_t", "I4", np.array([[ni, nj, nk], [ni - 1, nj - 1, nk - 1], [0, 0, 0]], dtype="i4"))
+        node(zone, "ZoneType", "ZoneType_t", "C1", text("Structured"))
+        zit = node(zone, "ZoneIterativeData", "ZoneIterativeData_t", "MT")
+        node(zit, "FlowSolutionPointers", "DataArray_t", "C1", names("Step0", "Step1"))
+        node(zit, "GridCoordinatesPointers", "DataArray_t", "C1", names("GridCoordinates", "Moved"))
+        k, j, i = np.meshgrid(np.arange(nk), np.arange(nj), np.arange(ni), indexing="ij")
+        coordinates(zone, i.astype("f8"), j.astype("f8"), k.astype("f8"))
+        moved = node(zone, "Moved", "GridCoordinates_t", "MT")
+        for name, v in (("CoordinateX", i + 10), ("CoordinateY", j), ("CoordinateZ", k)):
+            node(moved, name, "DataArray_t", "R8", v.astype("f8"))
+        for step in range(2):
+            sol = node(zone, f"Step{step}", "FlowSolution_t", "MT")
+            node(sol, "GridLocation", "GridLocation_t", "C1", text("Vertex"))
+            node(sol, "f", "DataArray_t", "R8", ((step + 1) * i).astype("f8"))
+
+
 if __name__ == "__main__":
     structured()
     unstructured()
+    polyhedral()
+    temporal()
+    if shutil.which("hdf2adf"):
+        for name in ("structured", "unstructured", "polyhedral", "temporal"):
+            subprocess.run(["hdf2adf", HERE / f"{name}.cgns", HERE / f"{name}-adf.cgns"],
+                           check=True, stdout=subprocess.DEVNULL)

@@ -19,7 +19,7 @@ pub struct MeshArgs {
     /// .pvtr, .pvti, multi-block .vtm, Exodus II (.e, .exo, .ex2, .exii, .g,
     /// .gen), VTKHDF (.vtkhdf, .hdf), an OpenFOAM case (its folder,
     /// system/controlDict or a .foam file), EnSight Gold (.case), CGNS
-    /// (.cgns, HDF5 storage), a PLOT3D grid (*xyz.bin, *.xyz, *.x), or a
+    /// (.cgns, HDF5 or ADF storage), a PLOT3D grid (*xyz.bin, *.xyz, *.x), or a
     /// time series of them (*.series, .pvd). Default: the
     /// embedded Blunt Fin (PLOT3D, NASA).
     pub mesh: Option<PathBuf>,

@@ -64,7 +64,7 @@ pub fn plot3d_q_sibling(xyz: &Path) -> Option<PathBuf> {
 /// `.vtkhdf` (and `.hdf`, `.hdf5`, `.h5` holding a `/VTKHDF` group), a
 /// PLOT3D grid `*xyz.bin`, `*.xyz`, `*.x`, an OpenFOAM case (its folder,
 /// `system/controlDict` or a `.foam` marker), EnSight Gold `.case`, CGNS
-/// `.cgns` (HDF5 storage), or a
+/// `.cgns` (HDF5 or ADF storage), or a
 /// time series of any of them,
 /// `*.series` or `.pvd`), then orients, validates and builds the topology
 /// (see [`tetray_mesh::prepare`]).
@@ -149,8 +149,15 @@ fn read_file(path: &Path, opts: &LoadOptions) -> Result<MeshRead, IoError> {
         Format::Cgns => {
             let cgns = CgnsOptions {
                 linearize: opts.linearize,
+                time_step: opts.time_step,
+                time: opts.time,
             };
-            from_vtk(read_cgns(path, &cgns)?.read, "CGNS")
+            let read = read_cgns(path, &cgns)?;
+            MeshRead {
+                times: read.times,
+                time_step: read.time_step,
+                ..from_vtk(read.read, "CGNS")
+            }
         }
         Format::EnSight => {
             let opts = EnSightOptions {

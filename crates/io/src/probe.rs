@@ -31,7 +31,7 @@ pub(crate) enum Format {
     OpenFoam,
     /// An EnSight Gold case file (`.case`).
     EnSight,
-    /// CGNS (`.cgns`; HDF5 storage, the ADF storage recognised).
+    /// CGNS (`.cgns`; HDF5 or ADF storage).
     Cgns,
 }
 

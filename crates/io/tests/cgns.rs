@@ -1,7 +1,7 @@
-//! The CGNS reader (HDF5 storage) on VTK's multi-zone CFL3D solution
-//! (`multi.cgns`, converted from its ADF storage by CGNS's `adf2hdf`) and
-//! on small files written for each part of the standard (`data/cgns`,
-//! made by the script beside them).
+//! The CGNS reader on VTK's multi-zone CFL3D solution (`multi.cgns` in its
+//! ADF storage, and its HDF5 twin converted by CGNS's `adf2hdf`) and on
+//! small files written for each part of the standard in both storages
+//! (`data/cgns`, made by the script beside them).
 
 use std::path::{Path, PathBuf};
 
@@ -120,22 +120,164 @@ fn an_unstructured_zone_reads_every_section() {
     }
 }
 
-/// The ADF storage, by name or by content, is refused in one line that
-/// says how to convert it.
+/// NGON_n faces and NFACE_n cells (a cube and a pyramid on its top, the
+/// shared face named with a minus sign by the pyramid): volume 1 + 1/6, f
+/// = x + 2y + 3z exact at every point (the centres the polyhedron split
+/// adds included: f is linear), and the cell values 1 and 2 averaged at
+/// the points (1 on the cube's base, 1.5 on the shared face, 2 at the
+/// apex).
 #[test]
-fn the_adf_storage_is_refused_with_the_conversion() {
+fn ngon_and_nface_sections_read_as_polyhedra() {
+    let m = loaded("cgns/polyhedral.cgns");
+    let origin = m.origin().as_vec3();
+    let volume: f64 = m
+        .mesh
+        .tets
+        .iter()
+        .map(|t| {
+            let [a, b, c, d] = t.map(|i| (m.mesh.points[i as usize] + origin).as_dvec3());
+            (b - a).cross(c - a).dot(d - a).abs() / 6.0
+        })
+        .sum();
+    assert!((volume - 7.0 / 6.0).abs() < 1e-6, "{volume}");
+    assert_eq!(m.report.cells_split, 2);
+    let (f, cell) = (field(&m, "f"), field(&m, "cell"));
+    for (k, p) in m.mesh.points.iter().enumerate() {
+        let q = (*p + origin).as_dvec3();
+        assert!(
+            (f64::from(f[k]) - (q.x + 2.0 * q.y + 3.0 * q.z)).abs() < 1e-5,
+            "f at {q}"
+        );
+        let expected = if q.z == 0.0 {
+            1.0
+        } else if q.z == 1.0 {
+            1.5
+        } else if q.z == 1.5 {
+            2.0
+        } else {
+            continue;
+        };
+        assert_eq!(cell[k], expected, "cell at {q}");
+    }
+}
+
+/// Iterative data: two steps at times 0.5 and 1.5, each naming its
+/// coordinates and its solution. Step 0 has the vertices (i, j, k) and f
+/// = i; step 1 (asked for by number, or by the nearest time) has them at
+/// (i + 10, j, k) and f = 2 i. Both storages.
+#[test]
+fn iterative_data_reads_as_time_steps() {
+    for name in ["cgns/temporal.cgns", "cgns/temporal-adf.cgns"] {
+        for (opts, step) in [
+            (LoadOptions::default(), 0),
+            (
+                LoadOptions {
+                    time_step: Some(1),
+                    ..LoadOptions::default()
+                },
+                1,
+            ),
+            (
+                LoadOptions {
+                    time: Some(1.4),
+                    ..LoadOptions::default()
+                },
+                1,
+            ),
+        ] {
+            let m = load(&data(name), &opts).unwrap_or_else(|e| panic!("{name}: {e}"));
+            assert_eq!(m.report.times, [0.5, 1.5], "{name}");
+            assert_eq!(m.report.time_step, Some(step), "{name}");
+            let origin = m.origin();
+            let f = field(&m, "f");
+            for (k, p) in m.mesh.points.iter().enumerate() {
+                let q = p.as_dvec3() + origin;
+                let i = q.x - 10.0 * step as f64;
+                assert!((0.0..=2.0).contains(&i), "{name} step {step}: {q}");
+                assert_eq!(
+                    f64::from(f[k]),
+                    (step + 1) as f64 * i,
+                    "{name} step {step}: {q}"
+                );
+            }
+        }
+        let e = load(
+            &data(name),
+            &LoadOptions {
+                time_step: Some(2),
+                ..LoadOptions::default()
+            },
+        )
+        .expect_err("step 2");
+        assert!(e.to_string().contains("out of range"), "{e}");
+    }
+}
+
+/// The same mesh and fields, bit for bit.
+fn assert_same(a: &LoadedMesh, b: &LoadedMesh, what: &str) {
+    assert_eq!(a.report.format, b.report.format, "{what}");
+    assert!(!a.mesh.fields.is_empty(), "{what}: no field");
+    assert_eq!(a.mesh.points, b.mesh.points, "{what}: points");
+    assert_eq!(a.mesh.tets, b.mesh.tets, "{what}: tetrahedra");
+    let names = |m: &LoadedMesh| {
+        m.mesh
+            .fields
+            .iter()
+            .map(|f| f.name.clone())
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(names(a), names(b), "{what}: fields");
+    for (fa, fb) in a.mesh.fields.iter().zip(&b.mesh.fields) {
+        assert_eq!(fa.values, fb.values, "{what}: {}", fa.name);
+    }
+}
+
+/// VTK's `multi.cgns` in its original ADF storage reads as its HDF5 twin
+/// (converted by CGNS's `adf2hdf`, whose counts VTK's reader confirms in
+/// the test above): the same points, tetrahedra and arrays, bit for bit.
+#[test]
+fn the_adf_original_reads_as_its_hdf5_twin() {
+    let adf = loaded("real/multi.cgns");
+    assert_eq!(adf.report.pieces.pieces, 4);
+    // Its one step's solution, named by each zone's iterative data.
+    assert_eq!(adf.report.times.len(), 1);
+    field(&adf, "Density");
+    assert_same(&adf, &loaded("real/multi-hdf5.cgns"), "multi.cgns");
+}
+
+/// The fixtures in the ADF storage, written by CGNS's `hdf2adf`, read as
+/// the HDF5 files they were converted from.
+#[test]
+fn the_adf_fixtures_read_as_their_hdf5_twins() {
+    for name in ["structured", "unstructured", "polyhedral", "temporal"] {
+        assert_same(
+            &loaded(&format!("cgns/{name}-adf.cgns")),
+            &loaded(&format!("cgns/{name}.cgns")),
+            name,
+        );
+    }
+}
+
+/// An ADF header of another version or numeric format, or one cut short,
+/// is one line naming the file and what is wrong.
+#[test]
+fn an_adf_header_that_is_not_read_says_why() {
     let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cgns");
     std::fs::create_dir_all(&dir).unwrap();
-    let mut head = vec![0xc0, 0xa8, 0xa3, 0xa9];
-    head.extend(b"ADF Database Version A02011>AdF0");
-    head.resize(4096, 0);
-    for name in ["old.cgns", "old"] {
-        let path = dir.join(name);
-        std::fs::write(&path, &head).unwrap();
-        let e = load(&path, &LoadOptions::default()).expect_err("ADF");
+    let bytes = std::fs::read(data("cgns/structured-adf.cgns")).unwrap();
+    for (at, value, expected) in [
+        (25, b'C', "database version 'C'"),
+        (100, b'C', "numeric format 'C'"),
+        (130, b'x', "AdF4"),
+    ] {
+        let mut copy = bytes.clone();
+        copy[at] = value;
+        let path = dir.join("header.cgns");
+        std::fs::write(&path, &copy).unwrap();
+        let e = load(&path, &LoadOptions::default()).expect_err("a bad header");
         let message = e.to_string();
         assert!(
-            message.contains("ADF") && message.contains("adf2hdf"),
+            message.contains("header.cgns") && message.contains(expected),
             "{message}"
         );
         assert!(!message.contains('\n'));
@@ -144,27 +286,63 @@ fn the_adf_storage_is_refused_with_the_conversion() {
 
 /// Prefixes of the small files (every 16th length), and their bytes
 /// overwritten with 0xff (every 8th; a load takes about 2 ms here): an
-/// error naming the file or a read; never a panic.
+/// error naming the file or a read; never a panic. A prefix reads only
+/// when it holds every byte the file's writer used, and then it reads as
+/// the whole file.
 #[test]
 fn every_truncation_and_corruption_is_an_error_or_a_read() {
     let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cgns-corpus");
     std::fs::create_dir_all(&dir).unwrap();
-    for name in ["structured.cgns", "unstructured.cgns"] {
+    for name in [
+        "structured.cgns",
+        "unstructured.cgns",
+        "polyhedral.cgns",
+        "structured-adf.cgns",
+        "unstructured-adf.cgns",
+        "polyhedral-adf.cgns",
+    ] {
         let bytes = std::fs::read(data(&format!("cgns/{name}"))).unwrap();
         let path = dir.join(name);
+        // An ADF file ends in unused bytes up to the end of its last
+        // block; its header says where the data ends (block and offset in
+        // hexadecimal), and a prefix that holds it is the whole file.
+        let whole = if name.contains("adf") {
+            let hex = |r: std::ops::Range<usize>| {
+                usize::from_str_radix(std::str::from_utf8(&bytes[r]).unwrap(), 16).unwrap()
+            };
+            hex(146..154) * 4096 + hex(154..158) + 1
+        } else {
+            bytes.len()
+        };
+        let full = load(&data(&format!("cgns/{name}")), &LoadOptions::default()).unwrap();
         for len in (0..bytes.len()).step_by(16) {
             std::fs::write(&path, &bytes[..len]).unwrap();
-            let e = load(&path, &LoadOptions::default()).expect_err("a prefix");
-            assert!(e.to_string().contains(name), "{len}: {e}");
-        }
-        let mut copy = bytes.clone();
-        for at in (0..bytes.len()).step_by(8) {
-            copy[at] = 0xff;
-            std::fs::write(&path, &copy).unwrap();
-            if let Err(e) = load(&path, &LoadOptions::default()) {
-                assert!(e.to_string().contains(name), "{at}: {e}");
+            match load(&path, &LoadOptions::default()) {
+                Err(e) => assert!(e.to_string().contains(name), "{len}: {e}"),
+                Ok(m) => {
+                    assert!(len >= whole, "{len}: a prefix read");
+                    assert_same(&m, &full, name);
+                }
             }
-            copy[at] = bytes[at];
+        }
+        // ADF writes its pointers, counts and sizes as hexadecimal text: a
+        // digit changed to another digit points elsewhere, which is the
+        // deeper test there.
+        let values: &[u8] = if name.contains("adf") {
+            &[0xff, b'9']
+        } else {
+            &[0xff]
+        };
+        let mut copy = bytes.clone();
+        for &value in values {
+            for at in (0..bytes.len()).step_by(8) {
+                copy[at] = value;
+                std::fs::write(&path, &copy).unwrap();
+                if let Err(e) = load(&path, &LoadOptions::default()) {
+                    assert!(e.to_string().contains(name), "{at}: {e}");
+                }
+                copy[at] = bytes[at];
+            }
         }
     }
 }

@@ -81,11 +81,20 @@ def test_structured_pyvista_matches_cli(tmp_path, cli_render, kind):
 
 
 def test_path_formats_render(cli_render):
-    for name in ("StructuredGrid.vts", "uGridEx.vtk", "can.vtu"):
+    for name in ("StructuredGrid.vts", "uGridEx.vtk", "can.vtu", "multi.cgns"):
         path = DATA / name
         ours = tetray.render(str(path), size=(24, 20), renderer="cpu")
         assert ours.shape == (20, 24, 4)
         assert max_diff(ours, cli_render(path, (24, 20))) <= TOL
+
+
+def test_both_cgns_storages_render_the_same_image():
+    """VTK's multi.cgns in its ADF storage and its HDF5 twin (adf2hdf):
+    the same mesh and arrays, so the same image, bit for bit."""
+    adf = tetray.render(str(DATA / "multi.cgns"), size=(32, 24), renderer="cpu", scalars="Density")
+    hdf5 = tetray.render(str(DATA / "multi-hdf5.cgns"), size=(32, 24), renderer="cpu", scalars="Density")
+    assert adf[..., 3].max() > 0.0
+    assert np.array_equal(adf, hdf5)
 
 
 def test_cmap_and_opacity_pyvista_habits():

@@ -2,9 +2,11 @@
 //! unstructured zone's element sections; its flow solutions as point or
 //! cell arrays.
 
+use std::collections::HashMap;
+
 use tetray_mesh::cells::{CellArray, CellGrid, add_cells};
 
-use super::{CgnsError, H5, children, data_f64, data_i64, data_text};
+use super::{CgnsError, Tree};
 
 /// CGNS element types read: (CGNS code, VTK type, nodes). The linear
 /// cells, faces and bars, and the quadratic tetrahedra and pyramids (whose
@@ -37,30 +39,45 @@ const CORNERS: [(i64, i64, usize, usize); 5] = [
 ];
 
 const MIXED: i64 = 20;
+const NGON: i64 = 22;
+const NFACE: i64 = 23;
+/// VTK's polyhedron.
+const POLYHEDRON: i64 = 42;
 
 pub(super) fn read_zone(
-    h5: &H5,
+    tree: &Tree,
     zone: &str,
+    step: Option<usize>,
     warnings: &mut Vec<String>,
 ) -> Result<CellGrid, CgnsError> {
-    let (size, _) = data_f64(h5, zone)?;
-    let kind = data_text(h5, &format!("{zone}/ZoneType")).unwrap_or_else(|| "Structured".into());
-    let coordinates = children(h5, zone, "GridCoordinates_t")?;
-    let Some(coords) = coordinates
-        .iter()
-        .find(|c| c.ends_with("/GridCoordinates"))
-        .or(coordinates.first())
-    else {
-        return Err(h5.invalid(zone, "no GridCoordinates".into()));
+    let size = tree.data_f64(zone)?;
+    let kind = tree
+        .data_text(&format!("{zone}/ZoneType"))
+        .unwrap_or_else(|| "Structured".into());
+    // The step's coordinates and solution, when the zone's iterative data
+    // names them.
+    let coordinates_at = step_node(tree, zone, "GridCoordinatesPointers", step)?;
+    let solution_at = step_node(tree, zone, "FlowSolutionPointers", step)?;
+    let coordinates = tree.children(zone, "GridCoordinates_t")?;
+    let coords = match &coordinates_at {
+        Some(name) => coordinates.iter().find(|c| c == &name),
+        None => coordinates
+            .iter()
+            .find(|c| c.ends_with("/GridCoordinates"))
+            .or(coordinates.first()),
     };
-    let axis = |name: &str| data_f64(h5, &format!("{coords}/{name}")).map(|(v, _)| v);
+    let Some(coords) = coords else {
+        let named = coordinates_at.map_or(String::new(), |c| format!(" {c}"));
+        return Err(tree.invalid(zone, format!("no GridCoordinates{named}")));
+    };
+    let axis = |name: &str| tree.data_f64(&format!("{coords}/{name}"));
     let (x, y, z) = (
         axis("CoordinateX")?,
         axis("CoordinateY")?,
         axis("CoordinateZ")?,
     );
     if x.len() != y.len() || x.len() != z.len() {
-        return Err(h5.invalid(
+        return Err(tree.invalid(
             coords,
             format!("{} x, {} y and {} z coordinates", x.len(), y.len(), z.len()),
         ));
@@ -75,7 +92,7 @@ pub(super) fn read_zone(
     // vertex and cell counts.
     let (vertex_dims, cell_dims) = if structured {
         if size.len() < 6 {
-            return Err(h5.invalid(zone, format!("zone sizes {size:?}")));
+            return Err(tree.invalid(zone, format!("zone sizes {size:?}")));
         }
         let v = [size[0] as usize, size[1] as usize, size[2] as usize];
         let c = [size[3] as usize, size[4] as usize, size[5] as usize];
@@ -84,7 +101,7 @@ pub(super) fn read_zone(
             .zip(&v)
             .all(|(&c, &v)| c + 1 == v || (c == v && v == 1));
         if product(&v) != Some(x.len()) || !cells_fit {
-            return Err(h5.invalid(
+            return Err(tree.invalid(
                 zone,
                 format!("{v:?} vertices and {c:?} cells, {} coordinates", x.len()),
             ));
@@ -94,46 +111,99 @@ pub(super) fn read_zone(
         (v, c)
     } else {
         grid.dataset = "UnstructuredGrid";
-        elements(h5, zone, x.len(), &mut grid, warnings)?;
+        elements(tree, zone, x.len(), &mut grid, warnings)?;
         (
             [x.len(), 1, 1],
             [size.get(1).copied().unwrap_or(0.0) as usize, 1, 1],
         )
     };
-    for solution in children(h5, zone, "FlowSolution_t")? {
-        solution_arrays(h5, &solution, structured, vertex_dims, cell_dims, &mut grid)?;
+    for solution in tree.children(zone, "FlowSolution_t")? {
+        if solution_at.as_ref().is_some_and(|s| s != &solution) {
+            continue;
+        }
+        solution_arrays(
+            tree,
+            &solution,
+            structured,
+            vertex_dims,
+            cell_dims,
+            &mut grid,
+        )?;
     }
     join_vectors(&mut grid.point_arrays);
     join_vectors(&mut grid.cell_arrays);
     Ok(grid)
 }
 
+/// The path of the node a zone's iterative data names for `step` (a row
+/// of 32-character names in `pointers`), if it names one.
+fn step_node(
+    tree: &Tree,
+    zone: &str,
+    pointers: &str,
+    step: Option<usize>,
+) -> Result<Option<String>, CgnsError> {
+    let Some(step) = step else {
+        return Ok(None);
+    };
+    let Some(data) = tree
+        .children(zone, "ZoneIterativeData_t")?
+        .into_iter()
+        .next()
+    else {
+        return Ok(None);
+    };
+    let path = format!("{data}/{pointers}");
+    if tree.label(&path) != "DataArray_t" {
+        return Ok(None);
+    }
+    let chars = tree.data_i64(&path)?;
+    let name: Vec<u8> = chars
+        .get(32 * step..32 * (step + 1))
+        .ok_or_else(|| tree.invalid(&path, format!("no name for step {step}")))?
+        .iter()
+        .map(|&c| c as u8)
+        .collect();
+    // A name ends at its first null; writers leave what follows unset.
+    let end = name.iter().position(|&c| c == 0).unwrap_or(name.len());
+    let name = String::from_utf8_lossy(&name[..end]).trim().to_string();
+    Ok(Some(format!("{zone}/{name}")))
+}
+
 /// The element sections of an unstructured zone, in element-number order.
 fn elements(
-    h5: &H5,
+    tree: &Tree,
     zone: &str,
     npoints: usize,
     grid: &mut CellGrid,
     warnings: &mut Vec<String>,
 ) -> Result<(), CgnsError> {
     let mut sections = Vec::new();
-    for section in children(h5, zone, "Elements_t")? {
-        let header = data_i64(h5, &section)?;
-        let range = data_i64(h5, &format!("{section}/ElementRange"))?;
+    for section in tree.children(zone, "Elements_t")? {
+        let header = tree.data_i64(&section)?;
+        let range = tree.data_i64(&format!("{section}/ElementRange"))?;
         let (Some(&code), [start, end, ..]) = (header.first(), range.as_slice()) else {
-            return Err(h5.invalid(&section, "no element type or range".into()));
+            return Err(tree.invalid(&section, "no element type or range".into()));
         };
         sections.push((*start, *end, code, section));
     }
     sections.sort();
     grid.offsets.push(0);
+    let faces = ngon_faces(tree, &sections, npoints)?;
     for (start, end, code, section) in sections {
         let count = usize::try_from(end - start + 1)
-            .map_err(|_| h5.invalid(&section, format!("range {start}..{end}")))?;
-        let connectivity = data_i64(h5, &format!("{section}/ElementConnectivity"))?;
+            .map_err(|_| tree.invalid(&section, format!("range {start}..{end}")))?;
+        if code == NGON {
+            continue;
+        }
+        if code == NFACE {
+            polyhedra(tree, &section, count, &faces, grid)?;
+            continue;
+        }
+        let connectivity = tree.data_i64(&format!("{section}/ElementConnectivity"))?;
         let mut at = 0usize;
         let offsets = if code == MIXED {
-            data_i64(h5, &format!("{section}/ElementStartOffset")).ok()
+            tree.data_i64(&format!("{section}/ElementStartOffset")).ok()
         } else {
             None
         };
@@ -148,7 +218,7 @@ fn elements(
                         .unwrap_or(usize::MAX);
                 }
                 let c = *connectivity.get(at).ok_or_else(|| {
-                    h5.invalid(&section, format!("element {e} past the connectivity"))
+                    tree.invalid(&section, format!("element {e} past the connectivity"))
                 })?;
                 (c, at + 1)
             } else {
@@ -167,14 +237,14 @@ fn elements(
                 }
                 (vtk, n, corners)
             } else {
-                return Err(h5.invalid(&section, format!("element type {cell_code} is not read (NGON_n and NFACE_n polyhedra are not)")));
+                return Err(tree.invalid(&section, format!("element type {cell_code} is not read")));
             };
             let nodes = connectivity.get(nodes_at..nodes_at + n).ok_or_else(|| {
-                h5.invalid(&section, format!("element {e} past the connectivity"))
+                tree.invalid(&section, format!("element {e} past the connectivity"))
             })?;
             for &node in &nodes[..keep] {
                 if node < 1 || node as usize > npoints {
-                    return Err(h5.invalid(
+                    return Err(tree.invalid(
                         &section,
                         format!("element {e} names vertex {node} of {npoints}"),
                     ));
@@ -189,18 +259,115 @@ fn elements(
     Ok(())
 }
 
+/// Lists of `count` elements: by `ElementStartOffset` (CGNS 4) or with
+/// each list's length before it in the connectivity (CGNS 3).
+fn lists(tree: &Tree, section: &str, count: usize) -> Result<Vec<Vec<i64>>, CgnsError> {
+    let connectivity = tree.data_i64(&format!("{section}/ElementConnectivity"))?;
+    let offsets = tree.data_i64(&format!("{section}/ElementStartOffset")).ok();
+    let past = |e: usize| tree.invalid(section, format!("element {e} past the connectivity"));
+    let mut out = Vec::with_capacity(count.min(connectivity.len()));
+    let mut at = 0usize;
+    for e in 0..count {
+        let (from, to) = match &offsets {
+            Some(o) => {
+                let bound = |i: usize| {
+                    o.get(i)
+                        .and_then(|&v| usize::try_from(v).ok())
+                        .ok_or_else(|| past(e))
+                };
+                (bound(e)?, bound(e + 1)?)
+            }
+            None => {
+                let n = connectivity
+                    .get(at)
+                    .and_then(|&n| usize::try_from(n).ok())
+                    .ok_or_else(|| past(e))?;
+                (at + 1, (at + 1).checked_add(n).ok_or_else(|| past(e))?)
+            }
+        };
+        out.push(connectivity.get(from..to).ok_or_else(|| past(e))?.to_vec());
+        at = to;
+    }
+    Ok(out)
+}
+
+/// The faces of the zone's NGON_n sections by element number, as 0-based
+/// vertices.
+fn ngon_faces(
+    tree: &Tree,
+    sections: &[(i64, i64, i64, String)],
+    npoints: usize,
+) -> Result<HashMap<i64, Vec<i64>>, CgnsError> {
+    let mut faces = HashMap::new();
+    for (start, end, _, section) in sections.iter().filter(|s| s.2 == NGON) {
+        let count = usize::try_from(end - start + 1)
+            .map_err(|_| tree.invalid(section, format!("range {start}..{end}")))?;
+        for (e, face) in lists(tree, section, count)?.into_iter().enumerate() {
+            if face.len() < 3 || face.iter().any(|&v| v < 1 || v as usize > npoints) {
+                return Err(tree.invalid(
+                    section,
+                    format!("face {e} has vertices {face:?} of {npoints}"),
+                ));
+            }
+            faces.insert(start + e as i64, face.iter().map(|v| v - 1).collect());
+        }
+    }
+    Ok(faces)
+}
+
+/// The polyhedra of an NFACE_n section: each a list of face element
+/// numbers, negative where the face's normal points into the cell.
+fn polyhedra(
+    tree: &Tree,
+    section: &str,
+    count: usize,
+    faces: &HashMap<i64, Vec<i64>>,
+    grid: &mut CellGrid,
+) -> Result<(), CgnsError> {
+    for (e, cell) in lists(tree, section, count)?.into_iter().enumerate() {
+        if cell.len() < 4 {
+            return Err(tree.invalid(section, format!("cell {e} has {} faces", cell.len())));
+        }
+        let mut outward = Vec::with_capacity(cell.len());
+        for &f in &cell {
+            let mut face = faces
+                .get(&f.unsigned_abs().try_into().unwrap_or(i64::MAX))
+                .ok_or_else(|| {
+                    tree.invalid(
+                        section,
+                        format!("cell {e} names face {f}, which no NGON_n section holds"),
+                    )
+                })?
+                .clone();
+            if f < 0 {
+                face.reverse();
+            }
+            outward.push(face);
+        }
+        let mut nodes: Vec<i64> = outward.iter().flatten().copied().collect();
+        nodes.sort_unstable();
+        nodes.dedup();
+        grid.polyhedron_faces.insert(grid.types.len(), outward);
+        grid.types.push(POLYHEDRON);
+        grid.connectivity.extend(nodes);
+        grid.offsets.push(grid.connectivity.len());
+    }
+    Ok(())
+}
+
 /// The arrays of one flow solution, at the vertices or the cells, their
 /// rind layers (structured zones) stripped.
 fn solution_arrays(
-    h5: &H5,
+    tree: &Tree,
     solution: &str,
     structured: bool,
     vertex_dims: [usize; 3],
     cell_dims: [usize; 3],
     grid: &mut CellGrid,
 ) -> Result<(), CgnsError> {
-    let location =
-        data_text(h5, &format!("{solution}/GridLocation")).unwrap_or_else(|| "Vertex".into());
+    let location = tree
+        .data_text(&format!("{solution}/GridLocation"))
+        .unwrap_or_else(|| "Vertex".into());
     let at_cells = match location.as_str() {
         "Vertex" => false,
         "CellCenter" => true,
@@ -211,7 +378,8 @@ fn solution_arrays(
         }
     };
     let rind = if structured {
-        data_i64(h5, &format!("{solution}/Rind")).unwrap_or_default()
+        tree.data_i64(&format!("{solution}/Rind"))
+            .unwrap_or_default()
     } else {
         Vec::new()
     };
@@ -221,11 +389,11 @@ fn solution_arrays(
             + rind.get(2 * a).copied().unwrap_or(0).max(0) as usize
             + rind.get(2 * a + 1).copied().unwrap_or(0).max(0) as usize
     });
-    for array in children(h5, solution, "DataArray_t")? {
-        let (values, _) = data_f64(h5, &array)?;
+    for array in tree.children(solution, "DataArray_t")? {
+        let values = tree.data_f64(&array)?;
         let total = product(&stored);
         if Some(values.len()) != total {
-            return Err(h5.invalid(
+            return Err(tree.invalid(
                 &array,
                 format!("{} values where the zone has {stored:?}", values.len()),
             ));
