@@ -27,6 +27,14 @@ arrays in Fortran order, so the HDF5 shape is reversed):
   FlowSolutionPointers "Step0", "Step1" and GridCoordinatesPointers
   "GridCoordinates", "Moved"): at step 0 the vertices are (i, j, k) and
   "f" = i; at step 1 they are (i + 10, j, k) and "f" = 2 i.
+- quadratic.cgns: one unstructured zone of five quadratic cells apart
+  from each other, each in its own section, every node at its exact place
+  (mid-edge nodes at edge midpoints, face and body nodes at centres), in
+  CGNS's node order: HEXA_27 (the unit cube at x 0..1), PENTA_18 (the
+  wedge of the triangle (0, 0), (1, 0), (0, 1) times z 0..1, at x 2..3),
+  PYRA_14 (the unit square base, apex 1 above its centre, at x 4..5),
+  HEXA_20 (x 6..7) and PENTA_15 (x 8..9): volumes 1, 1/2, 1/3, 1, 1/2.
+  Vertex solution "f" = x + 2y + 3z.
 
 Each is also converted to CGNS's older ADF storage (<name>-adf.cgns) by
 CGNS's own hdf2adf when it is on PATH (Debian package cgns-convert).
@@ -198,12 +206,61 @@ def temporal():
             node(sol, "f", "DataArray_t", "R8", ((step + 1) * i).astype("f8"))
 
 
+def quadratic():
+    """CGNS node orders (SIDS): corners, then edge midpoints (bottom, then
+    vertical, then top), then face centres, then the body centre."""
+    hexa = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]
+    hexa_edges = [(0, 1), (1, 2), (2, 3), (3, 0), (0, 4), (1, 5), (2, 6), (3, 7), (4, 5), (5, 6), (6, 7), (7, 4)]
+    hexa_faces = [(0, 1, 2, 3), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (0, 3, 7, 4), (4, 5, 6, 7)]
+    wedge = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (0, 1, 1)]
+    wedge_edges = [(0, 1), (1, 2), (2, 0), (0, 3), (1, 4), (2, 5), (3, 4), (4, 5), (5, 3)]
+    wedge_faces = [(0, 1, 4, 3), (1, 2, 5, 4), (2, 0, 3, 5)]
+    pyramid = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0.5, 0.5, 1)]
+    pyramid_edges = [(0, 1), (1, 2), (2, 3), (3, 0), (0, 4), (1, 4), (2, 4), (3, 4)]
+    pyramid_faces = [(0, 1, 2, 3)]
+
+    def nodes(corners, edges, faces, centre):
+        c = np.array(corners, dtype="f8")
+        out = list(c) + [(c[a] + c[b]) / 2 for a, b in edges] + [c[list(f)].mean(axis=0) for f in faces]
+        if centre:
+            out.append(c.mean(axis=0))
+        return out
+
+    cells = [  # (CGNS code, nodes, x offset)
+        (19, nodes(hexa, hexa_edges, hexa_faces, True), 0),
+        (16, nodes(wedge, wedge_edges, wedge_faces, False), 2),
+        (13, nodes(pyramid, pyramid_edges, pyramid_faces, False), 4),
+        (18, nodes(hexa, hexa_edges, [], False), 6),
+        (15, nodes(wedge, wedge_edges, [], False), 8),
+    ]
+    pts = []
+    with h5py.File(HERE / "quadratic.cgns", "w") as f:
+        b = base(f)
+        sections = []
+        for code, cell, dx in cells:
+            first = len(pts) + 1
+            pts.extend(p + np.array([dx, 0, 0]) for p in cell)
+            sections.append((code, list(range(first, len(pts) + 1))))
+        pts = np.array(pts)
+        zone = node(b, "Zone", "Zone_t", "I4", np.array([[len(pts)], [len(cells)], [0]], dtype="i4"))
+        node(zone, "ZoneType", "ZoneType_t", "C1", text("Unstructured"))
+        coordinates(zone, pts[:, 0], pts[:, 1], pts[:, 2])
+        for e, (code, conn) in enumerate(sections):
+            sec = node(zone, f"Cell{e + 1}", "Elements_t", "I4", np.array([code, 0], dtype="i4"))
+            node(sec, "ElementRange", "IndexRange_t", "I4", np.array([e + 1, e + 1], dtype="i4"))
+            node(sec, "ElementConnectivity", "DataArray_t", "I4", np.array(conn, dtype="i4"))
+        sol = node(zone, "FlowSolution", "FlowSolution_t", "MT")
+        node(sol, "GridLocation", "GridLocation_t", "C1", text("Vertex"))
+        node(sol, "f", "DataArray_t", "R8", pts[:, 0] + 2 * pts[:, 1] + 3 * pts[:, 2])
+
+
 if __name__ == "__main__":
     structured()
     unstructured()
     polyhedral()
     temporal()
+    quadratic()
     if shutil.which("hdf2adf"):
-        for name in ("structured", "unstructured", "polyhedral", "temporal"):
+        for name in ("structured", "unstructured", "polyhedral", "temporal", "quadratic"):
             subprocess.run(["hdf2adf", HERE / f"{name}.cgns", HERE / f"{name}-adf.cgns"],
                            check=True, stdout=subprocess.DEVNULL)

@@ -4,9 +4,9 @@
 //! or the older ADF (`adf.rs`). Both give the same tree. Read:
 //! the 3-D bases, their structured zones (`GridCoordinates`, cells of the
 //! vertex lattice) and unstructured zones (`Elements_t` of the linear
-//! types, MIXED, and the quadratic tetrahedra and pyramids whose node
-//! order is VTK's), and `FlowSolution_t` arrays at `Vertex` or
-//! `CellCenter` (with `Rind` layers stripped). Zones are welded.
+//! and quadratic types, MIXED, NGON_n faces and NFACE_n polyhedra), and
+//! `FlowSolution_t` arrays at `Vertex` or `CellCenter` (with `Rind`
+//! layers stripped), of one step of the iterative data. Zones are welded.
 
 mod adf;
 mod zone;
@@ -286,7 +286,7 @@ pub fn read_cgns(path: &Path, opts: &CgnsOptions) -> Result<CgnsRead, CgnsError>
         })?;
     for base in &bases {
         for zone in tree.children(base, "Zone_t")? {
-            grids.push(zone::read_zone(&tree, &zone, time_step, &mut warnings)?);
+            grids.push(zone::read_zone(&tree, &zone, time_step)?);
         }
     }
     if grids.is_empty() {

@@ -28,14 +28,43 @@ const ELEMENTS: [(i64, i64, usize); 14] = [
     (9, 28, 9),   // QUAD_9
 ];
 
-/// Quadratic types whose node order differs from VTK's: their corners are
-/// kept (CGNS code, the linear VTK type, nodes, corners).
-const CORNERS: [(i64, i64, usize, usize); 5] = [
-    (13, 14, 14, 5), // PYRA_14
-    (15, 13, 15, 6), // PENTA_15
-    (16, 13, 18, 6), // PENTA_18
-    (18, 12, 20, 8), // HEXA_20
-    (19, 12, 27, 8), // HEXA_27
+/// Quadratic types whose node order differs from VTK's: (CGNS code, VTK
+/// type, nodes, the CGNS node at each VTK node). CGNS lists the vertical
+/// edges' midpoints before the top edges', VTK after; its hexahedron face
+/// centres go bottom, y = 0, x = 1, y = 1, x = 0, top, VTK's x = 0, x = 1,
+/// y = 0, y = 1, bottom, top. PYRA_14's base centre has no place in VTK's
+/// 13-node pyramid and is left out (the splitter puts a centre there).
+const REORDERED: [(i64, i64, usize, &[usize]); 5] = [
+    (13, 27, 14, &[0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12]),
+    (
+        15,
+        26,
+        15,
+        &[0, 1, 2, 3, 4, 5, 6, 7, 8, 12, 13, 14, 9, 10, 11],
+    ),
+    (
+        16,
+        32,
+        18,
+        &[0, 1, 2, 3, 4, 5, 6, 7, 8, 12, 13, 14, 9, 10, 11, 15, 16, 17],
+    ),
+    (
+        18,
+        25,
+        20,
+        &[
+            0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 16, 17, 18, 19, 12, 13, 14, 15,
+        ],
+    ),
+    (
+        19,
+        29,
+        27,
+        &[
+            0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 16, 17, 18, 19, 12, 13, 14, 15, 24, 22, 21, 23,
+            20, 25, 26,
+        ],
+    ),
 ];
 
 const MIXED: i64 = 20;
@@ -48,7 +77,6 @@ pub(super) fn read_zone(
     tree: &Tree,
     zone: &str,
     step: Option<usize>,
-    warnings: &mut Vec<String>,
 ) -> Result<CellGrid, CgnsError> {
     let size = tree.data_f64(zone)?;
     let kind = tree
@@ -111,7 +139,7 @@ pub(super) fn read_zone(
         (v, c)
     } else {
         grid.dataset = "UnstructuredGrid";
-        elements(tree, zone, x.len(), &mut grid, warnings)?;
+        elements(tree, zone, x.len(), &mut grid)?;
         (
             [x.len(), 1, 1],
             [size.get(1).copied().unwrap_or(0.0) as usize, 1, 1],
@@ -171,13 +199,7 @@ fn step_node(
 }
 
 /// The element sections of an unstructured zone, in element-number order.
-fn elements(
-    tree: &Tree,
-    zone: &str,
-    npoints: usize,
-    grid: &mut CellGrid,
-    warnings: &mut Vec<String>,
-) -> Result<(), CgnsError> {
+fn elements(tree: &Tree, zone: &str, npoints: usize, grid: &mut CellGrid) -> Result<(), CgnsError> {
     let mut sections = Vec::new();
     for section in tree.children(zone, "Elements_t")? {
         let header = tree.data_i64(&section)?;
@@ -224,32 +246,31 @@ fn elements(
             } else {
                 (code, at)
             };
-            let (vtk, n, keep) = if let Some(&(_, vtk, n)) =
+            let (vtk, n, order): (i64, usize, Option<&[usize]>) = if let Some(&(_, vtk, n)) =
                 ELEMENTS.iter().find(|t| t.0 == cell_code)
             {
-                (vtk, n, n)
-            } else if let Some(&(_, vtk, n, corners)) = CORNERS.iter().find(|t| t.0 == cell_code) {
-                let note = format!(
-                    "{section}: quadratic CGNS elements of type {cell_code} kept by their corners"
-                );
-                if !warnings.contains(&note) {
-                    warnings.push(note);
-                }
-                (vtk, n, corners)
+                (vtk, n, None)
+            } else if let Some(&(_, vtk, n, order)) = REORDERED.iter().find(|t| t.0 == cell_code) {
+                (vtk, n, Some(order))
             } else {
                 return Err(tree.invalid(&section, format!("element type {cell_code} is not read")));
             };
             let nodes = connectivity.get(nodes_at..nodes_at + n).ok_or_else(|| {
                 tree.invalid(&section, format!("element {e} past the connectivity"))
             })?;
-            for &node in &nodes[..keep] {
+            for &node in nodes {
                 if node < 1 || node as usize > npoints {
                     return Err(tree.invalid(
                         &section,
                         format!("element {e} names vertex {node} of {npoints}"),
                     ));
                 }
-                grid.connectivity.push(node - 1);
+            }
+            match order {
+                Some(order) => grid
+                    .connectivity
+                    .extend(order.iter().map(|&k| nodes[k] - 1)),
+                None => grid.connectivity.extend(nodes.iter().map(|&v| v - 1)),
             }
             grid.types.push(vtk);
             grid.offsets.push(grid.connectivity.len());
