@@ -269,6 +269,24 @@ impl<'a> SlabLight<'a> {
             }
         }
     }
+
+    /// The light of the part `fraction` (0..=1) of a slab of `length`,
+    /// from `s_front` to `s_back` (the scalars at the part's ends): where a
+    /// ray crosses a side face of the grid between two slices.
+    pub fn part(&self, s_front: f32, s_back: f32, length: f32, fraction: f32) -> SegmentLight {
+        match self {
+            SlabLight::Corrected { .. } => {
+                let whole = self.light(s_front, s_back, length);
+                let (emitted, transmittance) =
+                    correct(whole.emitted, whole.transmittance, fraction);
+                SegmentLight {
+                    emitted,
+                    transmittance,
+                }
+            }
+            _ => self.light(s_front, s_back, length * fraction),
+        }
+    }
 }
 
 /// Schulze's correction for `ratio` times the table's length.

@@ -21,9 +21,10 @@
 //! bilinearly within each slice and linearly between slices (the
 //! tetrahedral ray caster interpolates linearly within each of 5
 //! tetrahedra per cell); the final image interpolates the intermediate one
-//! bilinearly; slabs the side faces of the grid cut are dropped. On a
-//! constant or linear field the first two agree exactly, so only the warp
-//! and the side slabs differ from the exact ray caster.
+//! bilinearly. A ray that crosses a side face of the grid between two
+//! slices composites the part of that slab inside the grid, its light
+//! scaled to the part's length. On a constant or linear field the first
+//! two agree exactly, so only the warp differs from the exact ray caster.
 
 pub mod classify;
 mod grid;

@@ -19,6 +19,7 @@ use tetray_core::{Camera, Image};
 use crate::classify::SlabLight;
 use crate::stack::{Stack, axes_of};
 use crate::{Classification, ShearWarp, ShearWarpError};
+use tetray_integrate::SegmentLight;
 
 /// What to render and how.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -351,18 +352,11 @@ impl Scanline<'_> {
             let (gf, gb) = (view.g(tf), view.g(tb));
             let ((exf, eyf), (exb, eyb)) = (view.offset(tf), view.offset(tb));
             let (yf, yb) = (self.y0 * gf + eyf, self.y0 * gb + eyb);
-            if !((0.0..=ymax).contains(&yf) && (0.0..=ymax).contains(&yb)) {
+            // The part of the slab this scanline's rays spend between the
+            // grid's first and last rows.
+            let Some((sy0, sy1)) = clip(yf, yb, ymax) else {
                 continue;
-            }
-            // Pixels whose ray is inside both slices.
-            let lo = ((0.0 - exf) / gf).max((0.0 - exb) / gb) + view.ou;
-            let hi = ((xmax - exf) / gf).min((xmax - exb) / gb) + view.ou;
-            let u_lo = lo.ceil().max(0.0) as usize;
-            let u_hi = (hi.floor().min((view.nu - 1) as f64)).max(-1.0);
-            if hi < lo || u_hi < u_lo as f64 {
-                continue;
-            }
-            let u_hi = u_hi as usize;
+            };
             let slab = Slab {
                 t,
                 gf,
@@ -372,6 +366,36 @@ impl Scanline<'_> {
                 yf,
                 yb,
             };
+            // Pixels whose ray meets the grid in this slab at all.
+            let (mut any_lo, mut any_hi) = (f64::INFINITY, f64::NEG_INFINITY);
+            for s in [sy0, sy1] {
+                let (g, ex) = (gf + s * (gb - gf), exf + s * (exb - exf));
+                any_lo = any_lo.min(-ex / g + view.ou);
+                any_hi = any_hi.max((xmax - ex) / g + view.ou);
+            }
+            let any_lo = any_lo.ceil().max(0.0) as usize;
+            let any_hi = any_hi.floor().min((view.nu - 1) as f64);
+            if any_hi < any_lo as f64 {
+                continue;
+            }
+            let any_hi = any_hi as usize;
+            // Pixels whose ray is inside both slices.
+            let lo = ((0.0 - exf) / gf).max((0.0 - exb) / gb) + view.ou;
+            let hi = ((xmax - exf) / gf).min((xmax - exb) / gb) + view.ou;
+            let u_lo = lo.ceil().max(any_lo as f64) as usize;
+            let u_hi = hi.floor().min(any_hi as f64);
+            if sy0 > 0.0 || sy1 < 1.0 || hi < lo || u_hi < u_lo as f64 {
+                // The rays cross a side of the grid in this slab.
+                self.partial(&slab, any_lo, any_hi, (sy0, sy1));
+                continue;
+            }
+            let u_hi = u_hi as usize;
+            if any_lo < u_lo {
+                self.partial(&slab, any_lo, u_lo - 1, (sy0, sy1));
+            }
+            if u_hi < any_hi {
+                self.partial(&slab, u_hi + 1, any_hi, (sy0, sy1));
+            }
             if !self.skip {
                 self.stretch(&slab, u_lo, u_hi);
                 continue;
@@ -455,28 +479,88 @@ impl Scanline<'_> {
                 let s_b = self.sample(slab.t + 1, xb, slab.yb);
                 self.buf_t[u] = slab.t as u32 + 1;
                 self.buf_s[u] = s_b;
-                let length = match self.slab_length {
-                    Some(l) => l,
-                    None => {
-                        let e = view.eye.unwrap_or_default();
-                        let y0 = self.y0;
-                        view.step_length((x0 - e.x) / -e.z, (y0 - e.y) / -e.z) as f32
-                    }
-                };
+                let length = self.full_length(x0);
                 let light = self.light.light(s_f, s_b, length);
-                let px = &mut self.row[u];
-                px.0 += px.1 * light.emitted;
-                px.1 *= light.transmittance;
-                self.counts[0] += 1;
-                if self.threshold < 1.0 && 1.0 - (px.1.x + px.1.y + px.1.z) / 3.0 >= self.threshold
-                {
-                    self.next[u] = u as u32 + 1;
-                    self.counts[2] += 1;
+                self.blend(u, &light);
+            }
+            u = self.find(u + 1);
+        }
+    }
+}
+
+impl Scanline<'_> {
+    /// The world length of the whole slab along the ray of pixel `x0`.
+    fn full_length(&self, x0: f64) -> f32 {
+        match self.slab_length {
+            Some(l) => l,
+            None => {
+                let e = self.view.eye.unwrap_or_default();
+                let d = -e.z;
+                self.view.step_length((x0 - e.x) / d, (self.y0 - e.y) / d) as f32
+            }
+        }
+    }
+
+    /// Adds a slab's light to pixel `u`; marks the pixel opaque when it
+    /// reaches the early-termination threshold.
+    fn blend(&mut self, u: usize, light: &SegmentLight) {
+        let px = &mut self.row[u];
+        px.0 += px.1 * light.emitted;
+        px.1 *= light.transmittance;
+        self.counts[0] += 1;
+        if self.threshold < 1.0 && 1.0 - (px.1.x + px.1.y + px.1.z) / 3.0 >= self.threshold {
+            self.next[u] = u as u32 + 1;
+            self.counts[2] += 1;
+        }
+    }
+
+    /// Composites the part of slab `slab` inside the grid at the pixels
+    /// `u0..=u1` still compositing, whose rays cross a side face of the
+    /// grid between the slab's two slices: the ray's parameter `s` (0 at
+    /// the front slice, 1 at the back one) is clipped to the grid's box
+    /// (`sy`: the scanline's clip to the rows), the scalar taken
+    /// trilinearly at the clipped ends, and the light scaled to the
+    /// clipped length (`1 - (1 - a)^(l / d)` and the colour with it).
+    fn partial(&mut self, slab: &Slab, u0: usize, u1: usize, sy: (f64, f64)) {
+        let view = *self.view;
+        let xmax = (view.na - 1) as f64;
+        let ymax = (view.nb - 1) as f64;
+        let mut u = self.find(u0);
+        while u <= u1 {
+            let x0 = u as f64 - view.ou;
+            let (xf, xb) = (x0 * slab.gf + slab.exf, x0 * slab.gb + slab.exb);
+            if let Some((sx0, sx1)) = clip(xf, xb, xmax) {
+                let (s0, s1) = (sx0.max(sy.0), sx1.min(sy.1));
+                if s1 > s0 {
+                    let at = |s: f64| {
+                        let x = (xf + s * (xb - xf)).clamp(0.0, xmax);
+                        let y = (slab.yf + s * (slab.yb - slab.yf)).clamp(0.0, ymax);
+                        let w = s as f32;
+                        self.sample(slab.t, x, y) * (1.0 - w) + self.sample(slab.t + 1, x, y) * w
+                    };
+                    let (a, b) = (at(s0), at(s1));
+                    let light = self
+                        .light
+                        .part(a, b, self.full_length(x0), (s1 - s0) as f32);
+                    // The back sample is not the slice's at this pixel.
+                    self.buf_t[u] = u32::MAX;
+                    self.blend(u, &light);
                 }
             }
             u = self.find(u + 1);
         }
     }
+}
+
+/// The parameters `s` in 0..=1 where `a + s (b - a)` lies in `0..=max`,
+/// when there are any (an interval of positive length, or all of 0..=1).
+fn clip(a: f64, b: f64, max: f64) -> Option<(f64, f64)> {
+    if a == b {
+        return (0.0..=max).contains(&a).then_some((0.0, 1.0));
+    }
+    let (p, q) = ((0.0 - a) / (b - a), (max - a) / (b - a));
+    let (lo, hi) = (p.min(q).max(0.0), p.max(q).min(1.0));
+    (hi > lo).then_some((lo, hi))
 }
 
 /// The geometry of the slab between traversal slices `t` and `t + 1` on
