@@ -297,6 +297,12 @@ fn run_one(
                     r.mean_error,
                     r.max_error
                 );
+                let bins: Vec<String> = r
+                    .by_chord
+                    .iter()
+                    .map(|b| format!("{} {:.2e} ({} px)", b.slabs, b.mean_error, b.pixels))
+                    .collect();
+                println!("        by chord (slice distances): {}", bins.join(", "));
             }
             s.checks
         }

@@ -58,7 +58,29 @@ pub struct SamplingRow {
     pub mean_error: f64,
     pub max_error: f64,
     pub ms_per_frame: f64,
+    /// Every pixel whose ray meets the grid, by the length of its chord
+    /// through the grid in slice distances: where rays cross the grid's
+    /// side faces, short chords cut slabs.
+    pub by_chord: Vec<ChordBin>,
 }
+
+/// The error of the pixels whose chord through the grid is `slabs` slice
+/// distances long.
+#[derive(Debug, Clone, Serialize)]
+pub struct ChordBin {
+    pub slabs: &'static str,
+    pub pixels: usize,
+    pub mean_error: f64,
+    pub max_error: f64,
+}
+
+/// Chord lengths binned, in slice distances: (label, upper bound).
+const CHORD_BINS: [(&str, f64); 4] = [
+    ("under 1", 1.0),
+    ("1 to 4", 4.0),
+    ("4 to 16", 16.0),
+    ("16 and over", f64::INFINITY),
+];
 
 /// What the study found.
 #[derive(Debug, Clone, Serialize)]
@@ -155,7 +177,7 @@ pub fn run(
                 ..ShearWarpOptions::default()
             };
             let image = sw.render(&camera, &frame)?;
-            let (mean, max, count) = error(&grid, &camera, &image.image, &reference);
+            let (mean, max, count, by_chord) = error(&grid, &camera, &image.image, &reference);
             log(&format!(
                 "shearwarp: {n}^3 (slice distance {h:.4}) {}: mean error {mean:.2e}, max {max:.2e} over {count} pixels",
                 c.name()
@@ -168,6 +190,7 @@ pub fn run(
                 mean_error: mean,
                 max_error: max,
                 ms_per_frame: image.stats.elapsed.as_secs_f64() * 1e3,
+                by_chord,
             });
         }
     }
@@ -238,16 +261,19 @@ fn reference(
 
 /// Mean and largest absolute difference over the RGBA channels of the
 /// pixels whose ray enters and leaves through the faces perpendicular to
-/// the principal axis, 1.5 cells inside their edges; and their number.
+/// the principal axis, 1.5 cells inside their edges; their number; and
+/// the error of every pixel whose ray meets the grid by its chord length.
 fn error(
     grid: &RegularGrid,
     camera: &Camera,
     image: &Image,
     reference: &Image,
-) -> (f64, f64, usize) {
+) -> (f64, f64, usize, Vec<ChordBin>) {
     let Ok(rays) = camera.pixel_rays(image.width, image.height) else {
-        return (f64::NAN, f64::NAN, 0);
+        return (f64::NAN, f64::NAN, 0, Vec::new());
     };
+    // Per chord bin: pixels, error sum, largest error.
+    let mut bins = [(0usize, 0.0f64, 0.0f64); CHORD_BINS.len()];
     let (lo, hi) = grid.bounds();
     let (lo, hi) = (lo.as_dvec3(), hi.as_dvec3());
     let spacing = grid.spacing().as_dvec3();
@@ -278,21 +304,43 @@ fn error(
                     a1 = a;
                 }
             }
-            let full =
-                t1 > t0 && a0 == axis && a1 == axis && inside(o + d * t0) && inside(o + d * t1);
-            if !full {
+            if t1 <= t0.max(0.0) {
                 continue;
             }
             let i = (py * image.width + px) as usize;
-            for c in 0..4 {
-                let e = f64::from((image.rgba[i][c] - reference.rgba[i][c]).abs());
+            let e = (0..4).map(|c| f64::from((image.rgba[i][c] - reference.rgba[i][c]).abs()));
+            let slabs = (t1 - t0.max(0.0)) * d.length() / spacing[axis];
+            let bin = CHORD_BINS
+                .iter()
+                .position(|&(_, upper)| slabs < upper)
+                .unwrap_or(0);
+            bins[bin].0 += 1;
+            for e in e.clone() {
+                bins[bin].1 += e;
+                bins[bin].2 = bins[bin].2.max(e);
+            }
+            let full = a0 == axis && a1 == axis && inside(o + d * t0) && inside(o + d * t1);
+            if !full {
+                continue;
+            }
+            for e in e {
                 sum += e;
                 max = max.max(e);
             }
             count += 1;
         }
     }
-    (sum / (4 * count.max(1)) as f64, max, count)
+    let by_chord = CHORD_BINS
+        .iter()
+        .zip(bins)
+        .map(|(&(slabs, _), (pixels, sum, max))| ChordBin {
+            slabs,
+            pixels,
+            mean_error: sum / (4 * pixels.max(1)) as f64,
+            max_error: max,
+        })
+        .collect();
+    (sum / (4 * count.max(1)) as f64, max, count, by_chord)
 }
 
 fn write(
@@ -321,6 +369,27 @@ fn write(
         ]);
     }
     out.csv("sampling.csv", &csv)?;
+    let mut chords = Csv::new(&[
+        "points_per_axis",
+        "classification",
+        "chord_slice_distances",
+        "pixels",
+        "mean_error",
+        "max_error",
+    ]);
+    for r in rows {
+        for b in &r.by_chord {
+            chords.row(&[
+                Cell::Int(r.points_per_axis as u64),
+                Cell::Text(r.classification.into()),
+                Cell::Text(b.slabs.into()),
+                Cell::Int(b.pixels as u64),
+                Cell::Num(b.mean_error),
+                Cell::Num(b.max_error),
+            ]);
+        }
+    }
+    out.csv("sampling_by_chord.csv", &chords)?;
     let series = |c: Classification, colour: usize, max: bool| {
         let points = rows
             .iter()
