@@ -343,3 +343,73 @@ fn blood_vessel_pvtu_of_data_real() {
         Path::new(env!("CARGO_MANIFEST_DIR")).join("data/real/blood_vessels/T0000000500.pvtu");
     check(&dir, &pvtu, &["--integrator", "exact"]);
 }
+
+/// One rank's piece file is cut short: every rank exits, within seconds,
+/// and the error names that rank and that file (the ranks agree on the
+/// outcome of loading before any of them waits for the others to render).
+/// Tried with the piece of rank 1 and of rank 0 (the one that writes the
+/// image).
+#[test]
+fn a_corrupt_piece_stops_every_rank_with_its_error() {
+    let Some(mpirun) = mpirun() else {
+        return;
+    };
+    let source = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/real/blood_vessels");
+    for bad in ["000.vtu", "001.vtu"] {
+        let dir = scratch("distributed", &format!("corrupt-{bad}"));
+        std::fs::create_dir_all(dir.join("T0000000500")).unwrap();
+        std::fs::copy(
+            source.join("T0000000500.pvtu"),
+            dir.join("T0000000500.pvtu"),
+        )
+        .unwrap();
+        for piece in ["000.vtu", "001.vtu", "002.vtu", "003.vtu"] {
+            let bytes = std::fs::read(source.join("T0000000500").join(piece)).unwrap();
+            let keep = if piece == bad { 3000 } else { bytes.len() };
+            std::fs::write(dir.join("T0000000500").join(piece), &bytes[..keep]).unwrap();
+        }
+        let start = std::time::Instant::now();
+        let mut child = Command::new(&mpirun)
+            .args(["-n", "3", "--oversubscribe", "--bind-to", "none"])
+            .arg(BIN)
+            .args([
+                "render",
+                "T0000000500.pvtu",
+                "--size",
+                "32x32",
+                "--renderer",
+                "cpu",
+                "--threads",
+                "1",
+                "--distributed",
+                "-o",
+                "out.png",
+            ])
+            .current_dir(&dir)
+            .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
+            .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
+            .env("OMPI_MCA_btl_vader_single_copy_mechanism", "none")
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .expect("run mpirun");
+        // A hang is the failure looked for: give up after a minute.
+        while child.try_wait().unwrap().is_none() {
+            if start.elapsed().as_secs() > 60 {
+                child.kill().ok();
+                panic!("{bad}: the ranks still run after 60 s");
+            }
+            std::thread::sleep(std::time::Duration::from_millis(50));
+        }
+        let out = child.wait_with_output().unwrap();
+        let stderr = text(&out.stderr);
+        println!("{bad}: exited in {:.2} s", start.elapsed().as_secs_f64());
+        assert!(!out.status.success(), "{bad}: {stderr}");
+        let rank = if bad == "000.vtu" { "rank 0" } else { "rank 1" };
+        assert!(
+            stderr.contains(rank) && stderr.contains(bad) && stderr.contains("ends inside"),
+            "{bad}: {stderr}"
+        );
+        assert!(!dir.join("out.png").exists(), "{bad}: an image was written");
+    }
+}
