@@ -12,6 +12,7 @@ use clap::Parser;
 
 fn main() -> ExitCode {
     quiet_device_select();
+    quiet_broken_pipe();
     let args = match cli::Cli::try_parse() {
         Ok(args) => args,
         // --help and --version.
@@ -50,4 +51,24 @@ fn quiet_device_select() {
         // function), so nothing can read the environment while it changes.
         unsafe { std::env::set_var("NODEVICE_SELECT", "1") };
     }
+}
+
+/// `tetray info mesh | head` closes the pipe before the output ends: Rust
+/// ignores SIGPIPE, so `println!` panics on the failed write. The reader
+/// has what it wanted; end as a process killed by SIGPIPE would (exit code
+/// 141), without the panic's message. Other panics print as usual.
+fn quiet_broken_pipe() {
+    let default = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let message = info
+            .payload()
+            .downcast_ref::<String>()
+            .map(String::as_str)
+            .or_else(|| info.payload().downcast_ref::<&str>().copied())
+            .unwrap_or("");
+        if message.starts_with("failed printing to stdout") && message.contains("Broken pipe") {
+            std::process::exit(141);
+        }
+        default(info);
+    }));
 }

@@ -456,3 +456,24 @@ fn bad_inputs_fail_with_one_line() {
         );
     }
 }
+
+/// A reader that closes the pipe early (`tetray info mesh | head -1`):
+/// the process ends as one killed by SIGPIPE would (exit code 141),
+/// without a panic message. The pipe is closed before the mesh has loaded,
+/// so the first line written meets it closed.
+#[test]
+fn a_closed_pipe_ends_quietly() {
+    let mesh = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/real/can.vtu");
+    let mut child = std::process::Command::new(support::BIN)
+        .arg("info")
+        .arg(&mesh)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("run tetray");
+    drop(child.stdout.take());
+    let out = child.wait_with_output().unwrap();
+    let stderr = text(&out.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_eq!(out.status.code(), Some(141), "{stderr}");
+}
