@@ -193,6 +193,11 @@ pub struct IntegratorArgs {
     /// data range (ParaView rescales by default).
     #[arg(long, requires = "tf")]
     pub no_rescale: bool,
+    /// The scalar range the transfer function spans, MIN,MAX (ParaView's
+    /// custom range, PyVista's clim). Default: the field's range; for
+    /// `animate`, its range over all the time steps rendered.
+    #[arg(long, value_name = "MIN,MAX", value_parser = parse_range, allow_hyphen_values = true)]
+    pub clim: Option<(f32, f32)>,
     /// Opacity unit distance u (world units). Default: ParaView's default
     /// ScalarOpacityUnitDistance, the bounds diagonal divided by the cube
     /// root of the number of cells of the dataset as read (hexahedra for
@@ -241,6 +246,7 @@ impl IntegratorArgs {
             riemann_step: self.riemann_step,
             preintegration_size: self.preintegration_size,
             knot_split: !self.no_knot_split,
+            range: self.clim,
         }
     }
 }
@@ -425,6 +431,17 @@ pub fn parse_bvh_preset(text: &str) -> Result<BuildPreset, String> {
 }
 
 /// `x,y,z`.
+/// `min,max` with min < max.
+pub fn parse_range(text: &str) -> Result<(f32, f32), String> {
+    match parse_floats(text)?.as_slice() {
+        [lo, hi] if lo < hi => Ok((*lo, *hi)),
+        [_, _] => Err(format!(
+            "{text:?}: the first number must be below the second"
+        )),
+        _ => Err(format!("expected two numbers min,max, got {text:?}")),
+    }
+}
+
 pub fn parse_vec3(text: &str) -> Result<Vec3, String> {
     match parse_floats(text)?.as_slice() {
         [x, y, z] => Ok(Vec3::new(*x, *y, *z)),

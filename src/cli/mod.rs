@@ -1,5 +1,6 @@
 //! The command line: argument definitions and dispatch.
 
+mod animate;
 mod args;
 mod bench;
 mod compare;
@@ -42,6 +43,9 @@ pub enum Command {
     Render(Box<RenderArgs>),
     /// Print counts, bounds, scalar ranges and validation findings of a mesh.
     Info(info::InfoArgs),
+    /// Render frames over a file's time steps, an orbit of the camera, or
+    /// both, to a GIF, an MP4 (ffmpeg) or a folder of PNG frames.
+    Animate(Box<animate::AnimateArgs>),
     /// Integrate one ray segment with any method and print JSON.
     Segment(segment::SegmentArgs),
     /// Print the Psi table's value and Psi in f64 at (gamma_b, gamma_f), as JSON.
@@ -81,6 +85,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         None => render::run(&RenderArgs::defaults()),
         Some(Command::Render(args)) => render::run(&args),
         Some(Command::Info(args)) => info::run(&args),
+        Some(Command::Animate(args)) => animate::run(&args),
         Some(Command::Segment(args)) => segment::run(&args),
         Some(Command::Psi(args)) => psi::run(&args),
         Some(Command::Bench(args)) => bench::run(&args),

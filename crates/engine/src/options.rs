@@ -57,6 +57,17 @@ pub struct IntegratorChoice {
     pub preintegration_size: usize,
     /// Cut segments at the transfer function's control points.
     pub knot_split: bool,
+    /// The scalar range the transfer function spans (ParaView's custom
+    /// range, PyVista's `clim`; an animation's range over all its steps);
+    /// `None`: the field's range.
+    pub range: Option<(f32, f32)>,
+}
+
+impl IntegratorChoice {
+    /// The range the transfer function spans for a field of `field_range`.
+    pub fn tf_range(&self, field_range: (f32, f32)) -> (f32, f32) {
+        self.range.unwrap_or(field_range)
+    }
 }
 
 impl Default for IntegratorChoice {
@@ -71,6 +82,7 @@ impl Default for IntegratorChoice {
             riemann_step: None,
             preintegration_size: PREINTEGRATION_TABLE_SIZE,
             knot_split: true,
+            range: None,
         }
     }
 }

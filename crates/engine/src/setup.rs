@@ -200,16 +200,17 @@ impl Setup {
         let unit_distance = choice
             .unit_distance
             .unwrap_or(extent.paraview_unit_distance);
+        let range = choice.tf_range(extent.range);
         let tf = tf::transfer_function(
             &choice.tf,
             &extent.field,
-            extent.range,
+            range,
             extent.bounds,
             unit_distance,
             log,
         )?;
         let integrator_options =
-            tf::integrator_options(&choice, unit_distance, extent.mean_chord, extent.range);
+            tf::integrator_options(&choice, unit_distance, extent.mean_chord, range);
         let (integrator, integrator_time) =
             tf::integrator(choice.method, &tf, &integrator_options)?;
         (log.info)(tf::describe_integrator(
@@ -322,7 +323,7 @@ impl Setup {
             &choice,
             unit_distance,
             self.extent.mean_chord,
-            self.extent.range,
+            self.choice.tf_range(self.extent.range),
         );
         Ok(tf::integrator(method, tf, &options)?.0)
     }
@@ -358,6 +359,7 @@ impl Setup {
         let mut extent = self.extent.clone();
         extent.field = field.to_string();
         extent.range = range;
+        let range = self.choice.tf_range(range);
         let tf = tf::transfer_function(
             &self.choice.tf,
             field,

@@ -1,0 +1,176 @@
+//! `tetray animate` on a three-step series written here (the same grid,
+//! the field f = (k + 1) x at step k, x in [0, 1]): each frame is the
+//! image `tetray render` makes of that step, bit for bit, with the colour
+//! range the field spans over all the steps (0 to 3); the GIF holds one
+//! frame per step; an orbit turns the view; bad requests are one line.
+
+mod support;
+
+use std::path::Path;
+
+use support::{run, scratch, text};
+
+const SIZE: &str = "40x32";
+
+/// Legacy VTK image data over the unit cube, 5 x 4 x 3 points, with
+/// f = scale * x.
+fn write_step(path: &Path, scale: f64) {
+    let (nx, ny, nz) = (5, 4, 3);
+    let mut s = format!(
+        "# vtk DataFile Version 3.0\nstep\nASCII\nDATASET STRUCTURED_POINTS\n\
+         DIMENSIONS {nx} {ny} {nz}\nORIGIN 0 0 0\nSPACING 0.25 0.3333333 0.5\n\
+         POINT_DATA {}\nSCALARS f double\nLOOKUP_TABLE default\n",
+        nx * ny * nz
+    );
+    for _k in 0..nz {
+        for _j in 0..ny {
+            for i in 0..nx {
+                s.push_str(&format!("{} ", scale * f64::from(i) / f64::from(nx - 1)));
+            }
+            s.push('\n');
+        }
+    }
+    std::fs::write(path, s).unwrap();
+}
+
+fn write_series(dir: &Path) {
+    for k in 0..3 {
+        write_step(&dir.join(format!("s{k}.vtk")), f64::from(k + 1));
+    }
+    std::fs::write(
+        dir.join("s.series"),
+        r#"{"file-series-version": "1.0", "files": [
+            {"name": "s0.vtk", "time": 0.0},
+            {"name": "s1.vtk", "time": 0.5},
+            {"name": "s2.vtk", "time": 1.0}]}"#,
+    )
+    .unwrap();
+}
+
+fn rgb(path: &Path) -> image::RgbImage {
+    image::open(path)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+        .into_rgb8()
+}
+
+fn ok(dir: &Path, args: &[&str]) -> String {
+    let out = run(dir, args);
+    assert!(out.status.success(), "{args:?}: {}", text(&out.stderr));
+    text(&out.stdout)
+}
+
+#[test]
+fn frames_are_the_renders_of_their_steps_in_one_colour_range() {
+    let dir = scratch("animate", "steps");
+    write_series(&dir);
+    let common = ["--renderer", "cpu", "--size", SIZE, "--elevation", "20"];
+    let stdout = ok(
+        &dir,
+        &[&["animate", "s.series", "-o", "frames/"][..], &common].concat(),
+    );
+    assert!(stdout.contains("colour range [0, 3]"), "{stdout}");
+    assert!(stdout.contains("wrote 3 frames"), "{stdout}");
+    let mut frames = Vec::new();
+    for k in 0..3 {
+        let step = k.to_string();
+        let png = format!("render{k}.png");
+        let args = [
+            "render",
+            "s.series",
+            "--time-step",
+            &step,
+            "--clim",
+            "0,3",
+            "-o",
+            &png,
+        ];
+        ok(&dir, &[&args[..], &common].concat());
+        let frame = rgb(&dir.join(format!("frames/frame_{k:04}.png")));
+        assert_eq!(frame, rgb(&dir.join(&png)), "step {k}");
+        frames.push(frame);
+    }
+    // The field grows with the step: in one colour range the frames differ.
+    assert_ne!(frames[0], frames[2]);
+
+    // The GIF: one frame per step at the size asked; only `--times 1:2`.
+    ok(
+        &dir,
+        &[
+            &["animate", "s.series", "-o", "s.gif", "--times", "1:2"][..],
+            &common,
+        ]
+        .concat(),
+    );
+    use image::AnimationDecoder as _;
+    let file = std::io::BufReader::new(std::fs::File::open(dir.join("s.gif")).unwrap());
+    let gif = image::codecs::gif::GifDecoder::new(file).unwrap();
+    let decoded = gif.into_frames().collect_frames().unwrap();
+    assert_eq!(decoded.len(), 2);
+    assert_eq!(decoded[0].buffer().dimensions(), (40, 32));
+}
+
+#[test]
+fn an_orbit_turns_the_view() {
+    let dir = scratch("animate", "orbit");
+    write_step(&dir.join("one.vtk"), 1.0);
+    let common = ["--renderer", "cpu", "--size", SIZE];
+    let args = [
+        "animate", "one.vtk", "-o", "orbit/", "--orbit", "180", "--frames", "4",
+    ];
+    let stdout = ok(&dir, &[&args[..], &common].concat());
+    assert!(
+        stdout.contains("wrote 4 frames of an orbit of 180 degrees"),
+        "{stdout}"
+    );
+    ok(
+        &dir,
+        &[&["render", "one.vtk", "-o", "still.png"][..], &common].concat(),
+    );
+    let still = rgb(&dir.join("still.png"));
+    let first = rgb(&dir.join("orbit/frame_0000.png"));
+    let worst = first
+        .pixels()
+        .zip(still.pixels())
+        .flat_map(|(a, b)| (0..3).map(move |c| a.0[c].abs_diff(b.0[c])))
+        .max()
+        .unwrap();
+    // The first frame is the still view (turned by 0 degrees: at most a
+    // rounding of the view-up, one step of 8 bits).
+    assert!(worst <= 1, "first frame off the still by {worst}");
+    let half = rgb(&dir.join("orbit/frame_0002.png"));
+    assert_ne!(first, half, "a quarter of a turn later the view differs");
+}
+
+#[test]
+fn bad_requests_are_one_line() {
+    let dir = scratch("animate", "errors");
+    write_series(&dir);
+    write_step(&dir.join("one.vtk"), 1.0);
+    for (args, expected) in [
+        (vec!["animate", "one.vtk", "-o", "x.gif"], "give --orbit"),
+        (
+            vec!["animate", "s.series", "-o", "x.gif", "--times", "0:7"],
+            "out of range",
+        ),
+        (
+            vec!["animate", "s.series", "-o", "x.txt"],
+            "write a .gif, a .mp4",
+        ),
+        (
+            vec!["animate", "s.series", "-o", "x.gif", "--time-step", "1"],
+            "from --times",
+        ),
+        (
+            vec!["render", "one.vtk", "--clim", "3,1"],
+            "below the second",
+        ),
+    ] {
+        let out = run(&dir, &args);
+        let stderr = text(&out.stderr);
+        assert!(!out.status.success(), "{args:?}");
+        assert!(stderr.contains(expected), "{args:?}: {stderr}");
+        assert_eq!(stderr.trim().lines().count(), 1, "{args:?}: {stderr}");
+    }
+    // Refused before any output was opened.
+    assert!(!dir.join("x.gif").exists());
+}
