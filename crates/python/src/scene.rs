@@ -38,6 +38,9 @@ struct Info {
     input_cells: usize,
     paraview_unit_distance: f32,
     load_seconds: f64,
+    /// The file's time steps and the one read.
+    times: Vec<f64>,
+    time_step: Option<usize>,
 }
 
 #[pymethods]
@@ -142,19 +145,11 @@ impl Scene {
                     .collect(),
                 range: clim,
             },
-            (None, None) => {
-                if clim.is_some() {
-                    // The default ramp over the given range.
-                    TfSource::Normalized {
-                        color: Vec::new(),
-                        opacity: Vec::new(),
-                        range: clim,
-                    }
-                } else {
-                    TfSource::Default
-                }
-            }
+            // The default ramp, over `clim` when given (see the choice's
+            // range below), as the CLI's --clim.
+            (None, None) => TfSource::Default,
         };
+        let default_range = clim.filter(|_| matches!(tf, TfSource::Default));
         let camera = camera_options(camera)?;
         let options = FrameOptions {
             integrator: IntegratorChoice {
@@ -164,6 +159,7 @@ impl Scene {
                 unit_distance,
                 opacity_mode,
                 psi_size,
+                range: default_range,
                 ..IntegratorChoice::default()
             },
             camera: camera.clone(),
@@ -265,6 +261,37 @@ impl Scene {
         image_array(py, &image)
     }
 
+    /// The scene's first view turned `degrees` about its view-up (none:
+    /// as it is), as `tetray animate --orbit` turns each frame.
+    #[pyo3(signature = (degrees=None))]
+    fn render_turned<'py>(
+        &self,
+        py: Python<'py>,
+        degrees: Option<f32>,
+    ) -> PyResult<Bound<'py, PyArray3<f32>>> {
+        if degrees.is_some_and(|d| !d.is_finite()) {
+            return Err(value_error(format!("degrees {degrees:?} is not finite")));
+        }
+        let image = py.detach(|| {
+            guard(|| {
+                let setup = self.setup.read().expect("setup lock");
+                let mut camera = setup.camera;
+                if let Some(degrees) = degrees {
+                    camera
+                        .azimuth(degrees)
+                        .and_then(|()| camera.orthogonalize_view_up())
+                        .map_err(|e| value_error(format!("turning the camera: {e}")))?;
+                }
+                let frame = self
+                    .engine
+                    .render(&setup, &camera, self.walk, self.size, None)
+                    .map_err(to_py)?;
+                Ok(frame.image)
+            })
+        })?;
+        image_array(py, &image)
+    }
+
     /// `frames` images orbiting the camera as `tetray bench` does: from the
     /// scene's camera, turned `step` degrees (default 360 / frames) about
     /// the view-up after each frame.
@@ -335,6 +362,8 @@ impl Scene {
         d.set_item("excluded_cells", s.excluded.cells.len())?;
         d.set_item("paraview_unit_distance", self.info.paraview_unit_distance)?;
         d.set_item("load_seconds", self.info.load_seconds)?;
+        d.set_item("times", self.info.times.clone())?;
+        d.set_item("time_step", self.info.time_step)?;
         d.set_item("warnings", s.warnings.clone())?;
         let setup = self.setup.read().expect("setup lock");
         let scene = setup.scene().map_err(to_py)?;
@@ -429,6 +458,8 @@ fn info_of(input: &MeshInput) -> Info {
         input_cells: input.input_cells(),
         paraview_unit_distance: input.paraview_unit_distance(),
         load_seconds: input.load_time.as_secs_f64(),
+        times: input.loaded.report.times.clone(),
+        time_step: input.loaded.report.time_step,
     }
 }
 

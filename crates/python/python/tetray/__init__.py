@@ -76,6 +76,8 @@ class Scene:
         block: Optional[str] = None,
         name: Optional[str] = None,
     ) -> None:
+        # What the scene was made from, to make the other time steps'.
+        self._args = {k: v for k, v in locals().items() if k != "self"}
         source, field = _mesh.to_source(mesh, scalars, name)
         tf_json = None if tf is None else _tf.preset(tf)
         if tf_json is not None and (cmap is not None or opacity is not None):
@@ -129,6 +131,53 @@ class Scene:
         image = self._native.render(given or None, None if size is None else _size(size))
         self._warn()
         return image if background is None else composite(image, background)
+
+    def frames(self, times: Any = None, orbit: Optional[float] = None, n_frames: Optional[int] = None) -> Iterator[np.ndarray]:
+        """The frames of an animation, as ``tetray animate`` makes them: one
+        per time step (``times``: ``"all"``, a ``(first, last)`` pair, both
+        included, or a list of steps; default every step of a file that
+        has several), the first view turning ``orbit`` degrees about its
+        view-up over the animation (``n_frames`` frames, default 36, when
+        there are no steps). The transfer function spans the field over
+        every step rendered unless the scene was given ``clim``, so frame k
+        is ``Scene(mesh, ..., time_step=k, clim=(lo, hi)).render()``. Each
+        step is loaded when its frame is made (the range takes one more
+        pass over the steps)."""
+        stored = list(self.info["times"])
+        if times is None:
+            steps = list(range(len(stored))) if len(stored) > 1 else []
+        elif isinstance(times, str):
+            if times != "all":
+                raise ValueError(f"times: expected 'all', a (first, last) pair or a list, got {times!r}")
+            steps = list(range(len(stored)))
+        elif isinstance(times, tuple) and len(times) == 2:
+            steps = list(range(int(times[0]), int(times[1]) + 1))
+        else:
+            steps = [int(t) for t in times]
+        for step in steps:
+            if not 0 <= step < len(stored):
+                raise ValueError(f"times: step {step} is out of range: the data stores {len(stored)} time steps")
+        if not steps and orbit is None:
+            raise ValueError("nothing to animate: the data has no time steps to go through; give orbit=")
+        count = len(steps) if steps else int(36 if n_frames is None else n_frames)
+        if count < 1:
+            raise ValueError(f"n_frames: expected 1 or more, got {n_frames}")
+        args = dict(self._args, time=None)
+        if steps and args.get("clim") is None:
+            field = self.info["field"]
+            lo, hi = float("inf"), float("-inf")
+            for step in steps:
+                fields = Scene(**dict(args, time_step=step)).info["fields"]
+                f = next(f for f in fields if f["name"] == field)
+                lo, hi = min(lo, f["min"]), max(hi, f["max"])
+            if lo < hi:
+                args["clim"] = (lo, hi)
+        scene, current = self, None
+        for i in range(count):
+            if steps and steps[i] != current:
+                current = steps[i]
+                scene = Scene(**dict(args, time_step=current))
+            yield scene._native.render_turned(None if orbit is None else float(orbit) * i / count)
 
     def orbit(self, frames: int = 36, step: Optional[float] = None) -> List[np.ndarray]:
         """``frames`` views turning about the view-up from the first view
