@@ -6,9 +6,7 @@
 //! over every step rendered, unless `--clim` fixes it), so a colour means
 //! the same value in every frame.
 
-use std::io::Write as _;
-use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Stdio};
+use std::path::PathBuf;
 
 use anyhow::{Context, bail};
 use clap::Args;
@@ -17,6 +15,7 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use super::args::{FrameFlags, WalkArgs, parse_finite, parse_rgb, parse_size};
 use super::scene;
+use tetray_core::Movie;
 use tetray_engine::Engine;
 
 #[derive(Debug, Clone, Args)]
@@ -53,103 +52,6 @@ pub struct AnimateArgs {
     pub fps: u32,
 }
 
-/// Where the frames go.
-enum Sink {
-    Folder(PathBuf),
-    Gif(image::codecs::gif::GifEncoder<std::fs::File>),
-    Mp4(Child),
-}
-
-impl Sink {
-    fn open(path: &Path, (width, height): (u32, u32), fps: u32) -> anyhow::Result<Sink> {
-        let ext = path
-            .extension()
-            .and_then(|e| e.to_str())
-            .map(str::to_ascii_lowercase);
-        let folder = path.to_string_lossy().ends_with('/') || path.is_dir();
-        match ext.as_deref() {
-            _ if folder => {
-                std::fs::create_dir_all(path)
-                    .with_context(|| format!("{}: cannot make the folder", path.display()))?;
-                Ok(Sink::Folder(path.to_path_buf()))
-            }
-            Some("gif") => {
-                let file = std::fs::File::create(path)
-                    .with_context(|| format!("{}: cannot write", path.display()))?;
-                let mut gif = image::codecs::gif::GifEncoder::new_with_speed(file, 10);
-                gif.set_repeat(image::codecs::gif::Repeat::Infinite)?;
-                Ok(Sink::Gif(gif))
-            }
-            Some("mp4") => {
-                if width % 2 == 1 || height % 2 == 1 {
-                    bail!("MP4 (yuv420p) needs an even width and height, not {width}x{height}");
-                }
-                let child = Command::new("ffmpeg")
-                    .args([
-                        "-loglevel",
-                        "error",
-                        "-y",
-                        "-f",
-                        "rawvideo",
-                        "-pix_fmt",
-                        "rgb24",
-                    ])
-                    .args(["-s", &format!("{width}x{height}"), "-r", &fps.to_string()])
-                    .args(["-i", "-", "-an", "-c:v", "libx264", "-pix_fmt", "yuv420p"])
-                    .arg(path)
-                    .stdin(Stdio::piped())
-                    .spawn()
-                    .map_err(|e| {
-                        anyhow::anyhow!(
-                            "{}: MP4 is written by ffmpeg, which could not be started ({e}); \
-                             install ffmpeg, or write a .gif or a folder of PNG frames",
-                            path.display()
-                        )
-                    })?;
-                Ok(Sink::Mp4(child))
-            }
-            _ => bail!(
-                "{}: write a .gif, a .mp4, or a folder of PNG frames (a path ending in /)",
-                path.display()
-            ),
-        }
-    }
-
-    fn add(&mut self, index: usize, frame: image::RgbImage, fps: u32) -> anyhow::Result<()> {
-        match self {
-            Sink::Folder(dir) => {
-                let path = dir.join(format!("frame_{index:04}.png"));
-                frame
-                    .save_with_format(&path, image::ImageFormat::Png)
-                    .with_context(|| format!("{}: cannot write", path.display()))?;
-            }
-            Sink::Gif(gif) => {
-                let rgba = image::DynamicImage::ImageRgb8(frame).into_rgba8();
-                let delay = image::Delay::from_numer_denom_ms(1000, fps);
-                gif.encode_frame(image::Frame::from_parts(rgba, 0, 0, delay))?;
-            }
-            Sink::Mp4(child) => {
-                let stdin = child.stdin.as_mut().context("ffmpeg's input")?;
-                stdin
-                    .write_all(frame.as_raw())
-                    .context("ffmpeg stopped reading frames")?;
-            }
-        }
-        Ok(())
-    }
-
-    fn finish(self) -> anyhow::Result<()> {
-        if let Sink::Mp4(mut child) = self {
-            drop(child.stdin.take());
-            let status = child.wait()?;
-            if !status.success() {
-                bail!("ffmpeg failed ({status})");
-            }
-        }
-        Ok(())
-    }
-}
-
 pub fn run(args: &AnimateArgs) -> anyhow::Result<()> {
     let mesh = &args.frame.mesh;
     if mesh.time_step.is_some() || mesh.time.is_some() {
@@ -172,7 +74,7 @@ pub fn run(args: &AnimateArgs) -> anyhow::Result<()> {
     };
     // The output first: a path that cannot be written fails before the
     // steps are read.
-    let mut sink = Sink::open(&args.output, args.size, args.fps)?;
+    let mut movie = Movie::create(&args.output, args.size, args.fps, args.background)?;
     let mut flags = args.frame.clone();
     if flags.integrator.clim.is_none()
         && !steps.is_empty()
@@ -221,11 +123,11 @@ pub fn run(args: &AnimateArgs) -> anyhow::Result<()> {
         }
         let frame = engine.render(setup, &camera, &args.walk, args.size, None)?;
         super::render::warn_about(&frame.stats.counters);
-        sink.add(index, frame.image.to_rgb8(args.background)?, args.fps)?;
+        movie.add(&frame.image)?;
         bar.inc(1);
     }
     bar.finish_and_clear();
-    sink.finish()?;
+    movie.finish()?;
     let what = match (&times, args.orbit) {
         (Some(t), Some(o)) => format!("{} time steps ({t}) turning {o} degrees", steps.len()),
         (Some(t), None) => format!("{} time steps ({t})", steps.len()),

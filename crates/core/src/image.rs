@@ -120,6 +120,19 @@ impl Image {
         })
     }
 
+    /// The PNG [`Image::write_png`] writes, as bytes (for a notebook to
+    /// show).
+    pub fn png_bytes(&self, background: Vec3) -> Result<Vec<u8>, ImageError> {
+        let mut bytes = std::io::Cursor::new(Vec::new());
+        self.to_rgb8(background)?
+            .write_to(&mut bytes, image::ImageFormat::Png)
+            .map_err(|source| ImageError::Write {
+                path: PathBuf::from("(in memory)"),
+                source,
+            })?;
+        Ok(bytes.into_inner())
+    }
+
     /// The image as a NumPy `.npy` file (format version 1.0): a
     /// `(height, width, 4)` array of little-endian f32, C order, row 0 at
     /// the top, premultiplied like the EXR. NumPy reads it with

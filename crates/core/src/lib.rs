@@ -15,9 +15,11 @@ pub mod counters;
 pub mod defaults;
 pub mod image;
 pub mod method;
+pub mod movie;
 pub mod watertight;
 
 pub use camera::{Camera, CameraError, PixelRays, ViewBasis, relative_to_origin};
 pub use counters::WalkCounters;
 pub use image::{Image, ImageError, composite_over};
 pub use method::{Method, Model, UnknownMethod};
+pub use movie::{Movie, MovieError};

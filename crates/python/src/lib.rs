@@ -12,6 +12,7 @@
 
 mod extras;
 mod grid;
+mod movie;
 mod scene;
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
@@ -56,6 +57,8 @@ pub(crate) fn guard<T>(f: impl FnOnce() -> PyResult<T>) -> PyResult<T> {
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<grid::Grid>()?;
     m.add_class::<scene::Scene>()?;
+    m.add_class::<movie::MovieWriter>()?;
+    m.add_function(wrap_pyfunction!(movie::png_bytes, m)?)?;
     m.add_function(wrap_pyfunction!(extras::segment, m)?)?;
     m.add_function(wrap_pyfunction!(extras::psi, m)?)?;
     m.add_function(wrap_pyfunction!(extras::methods, m)?)?;

@@ -65,3 +65,30 @@ def test_an_orbit_of_one_step_turns_the_view(tmp_path):
         next(scene.frames())
     with pytest.raises(ValueError, match="out of range"):
         next(tetray.Scene(series, size=SIZE, renderer="cpu").frames(times=[0, 5]))
+
+
+def test_animate_writes_what_the_cli_writes(tmp_path, tetray_bin):
+    """``Scene.animate`` to a folder of PNG frames and to a GIF: the folder
+    holds the CLI's frames, byte for byte decoded; the GIF one frame per
+    step. ``_repr_png_`` is the first view's PNG."""
+    from PIL import Image
+
+    series = write_series(tmp_path)
+    scene = tetray.Scene(series, size=SIZE, renderer="cpu", elevation=20.0)
+    assert scene.animate(f"{tmp_path}/py/", background=(0.1, 0.2, 0.3)) == 3
+    run_cli(tetray_bin, ["animate", series, "-o", f"{tmp_path}/cli/", "--renderer", "cpu",
+                         "--size", f"{SIZE[0]}x{SIZE[1]}", "--elevation", "20", "--background", "0.1,0.2,0.3"])
+    for k in range(3):
+        py = np.asarray(Image.open(tmp_path / "py" / f"frame_{k:04d}.png"))
+        cli = np.asarray(Image.open(tmp_path / "cli" / f"frame_{k:04d}.png"))
+        assert np.array_equal(py, cli), f"frame {k}"
+    assert scene.animate(tmp_path / "s.gif", times=(0, 1), fps=5) == 2
+    with Image.open(tmp_path / "s.gif") as gif:
+        assert gif.n_frames == 2 and gif.size == SIZE
+    with pytest.raises(ValueError, match="write a .gif, a .mp4"):
+        scene.animate(tmp_path / "s.txt")
+    png = scene._repr_png_()
+    import io
+
+    shown = np.asarray(Image.open(io.BytesIO(png)))
+    assert np.array_equal(shown, tetray.to_rgb8(scene.render()))

@@ -12,6 +12,7 @@ many views. Defaults are the CLI's: the same call gives the same image as
 from __future__ import annotations
 
 import json
+import os
 import warnings
 from typing import Any, Dict, Iterator, List, Optional, Sequence, Tuple
 
@@ -178,6 +179,33 @@ class Scene:
                 current = steps[i]
                 scene = Scene(**dict(args, time_step=current))
             yield scene._native.render_turned(None if orbit is None else float(orbit) * i / count)
+
+    def animate(
+        self,
+        path: Any,
+        times: Any = None,
+        orbit: Optional[float] = None,
+        n_frames: Optional[int] = None,
+        fps: int = 10,
+        background: Any = (0.0, 0.0, 0.0),
+    ) -> int:
+        """Writes the frames of ``frames(times, orbit, n_frames)`` as
+        ``tetray animate -o path`` does: a folder of PNG frames (a path
+        ending in ``/`` or an existing folder), an animated GIF (``.gif``)
+        or an MP4 through ffmpeg (``.mp4``), at ``fps`` frames per second
+        over ``background``. Returns the number of frames written."""
+        bg = tuple(float(v) for v in _background(background).reshape(3))
+        writer = _native.MovieWriter(os.fspath(path), self._size, int(fps), bg)
+        try:
+            for image in self.frames(times, orbit, n_frames):
+                writer.add(image)
+        finally:
+            writer.close()
+        return writer.frames
+
+    def _repr_png_(self) -> bytes:
+        """The first view as the CLI's PNG, for notebooks to show."""
+        return _native.png_bytes(self.render())
 
     def orbit(self, frames: int = 36, step: Optional[float] = None) -> List[np.ndarray]:
         """``frames`` views turning about the view-up from the first view
