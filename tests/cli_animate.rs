@@ -174,3 +174,37 @@ fn bad_requests_are_one_line() {
     // Refused before any output was opened.
     assert!(!dir.join("x.gif").exists());
 }
+
+/// An MP4 through ffmpeg (which `tools/system-deps` installs): ffprobe
+/// reads back one frame per step at the size asked.
+#[test]
+fn an_mp4_holds_one_frame_per_step() {
+    let dir = scratch("animate", "mp4");
+    write_series(&dir);
+    ok(
+        &dir,
+        &[
+            "animate",
+            "s.series",
+            "-o",
+            "s.mp4",
+            "--renderer",
+            "cpu",
+            "--size",
+            SIZE,
+        ],
+    );
+    let probe = std::process::Command::new("ffprobe")
+        .args(["-v", "error", "-count_frames", "-select_streams", "v:0"])
+        .args([
+            "-show_entries",
+            "stream=nb_read_frames,width,height",
+            "-of",
+            "csv=p=0",
+        ])
+        .arg(dir.join("s.mp4"))
+        .output()
+        .expect("ffprobe (apt-get install ffmpeg; tools/system-deps installs it)");
+    assert!(probe.status.success(), "{}", text(&probe.stderr));
+    assert_eq!(text(&probe.stdout).trim(), "40,32,3");
+}
