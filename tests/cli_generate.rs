@@ -110,6 +110,70 @@ fn generate_solid_then_info() {
     assert_eq!(count(&joined["seam_faces"]), 0);
 }
 
+/// `--steps 3` writes a series of three files sharing points and cells,
+/// at times 0, 1/3, 2/3: "linear" grows as (1 + t)(x + 2y + 3z) (its
+/// range scales by 1 + t, to f32 rounding) and "wave" travels.
+#[test]
+fn generate_solid_steps_make_a_series() {
+    let dir = scratch("steps");
+    let summary = json(
+        &dir,
+        &[
+            "generate",
+            "solid",
+            "--tets",
+            "2000",
+            "--steps",
+            "3",
+            "-o",
+            "run.series",
+        ],
+    );
+    assert_eq!(
+        summary["files"].as_array().map(Vec::len),
+        Some(4),
+        "{summary}"
+    );
+    check_files(&dir, &summary);
+    let field = |info: &Value, name: &str| -> (f64, f64) {
+        let f = info["fields"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|f| f["name"] == name)
+            .unwrap_or_else(|| panic!("{name}"));
+        (f["min"].as_f64().unwrap(), f["max"].as_f64().unwrap())
+    };
+    let first = json(&dir, &["info", "run.series", "--json"]);
+    assert_eq!(
+        first["times"].as_array().map(Vec::len),
+        Some(3),
+        "{}",
+        first["times"]
+    );
+    let (lo, hi) = field(&first, "linear");
+    for k in 1..3 {
+        let step = k.to_string();
+        let info = json(
+            &dir,
+            &["info", "run.series", "--time-step", &step, "--json"],
+        );
+        assert_eq!(info["tets"], first["tets"]);
+        assert_eq!(info["points"], first["points"]);
+        let scale = 1.0 + f64::from(k) / 3.0;
+        let (a, b) = field(&info, "linear");
+        assert!(
+            (a - scale * lo).abs() < 1e-5 * scale * lo.abs(),
+            "step {k}: {a} vs {lo}"
+        );
+        assert!(
+            (b - scale * hi).abs() < 1e-5 * scale * hi.abs(),
+            "step {k}: {b} vs {hi}"
+        );
+        assert_ne!(field(&info, "wave"), field(&first, "wave"), "step {k}");
+    }
+}
+
 #[test]
 fn generate_plot3d_then_info() {
     let dir = scratch("plot3d");

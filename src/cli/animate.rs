@@ -98,7 +98,8 @@ pub fn run(args: &AnimateArgs) -> anyhow::Result<()> {
     let mut current: Option<(Option<usize>, tetray_engine::Setup, Engine)> = None;
     for index in 0..count {
         let step = steps.get(index).copied();
-        if current.as_ref().is_none_or(|(s, _, _)| *s != step) {
+        let loaded = current.as_ref().is_none_or(|(s, _, _)| *s != step);
+        if loaded {
             flags.mesh.time_step = step;
             let frame = scene::FrameArgs {
                 flags: &flags,
@@ -123,6 +124,18 @@ pub fn run(args: &AnimateArgs) -> anyhow::Result<()> {
         }
         let frame = engine.render(setup, &camera, &args.walk, args.size, None)?;
         super::render::warn_about(&frame.stats.counters);
+        if let (true, Some(step)) = (loaded, step) {
+            // What each step costs: its file, its scene, its frame.
+            bar.suspend(|| {
+                println!(
+                    "step {step}: load {:.3} s, scene {:.3} s, integrator {:.3} s, frame {:.3} s",
+                    setup.load_time.as_secs_f64(),
+                    setup.scene_time.as_secs_f64(),
+                    setup.integrator_time.as_secs_f64(),
+                    frame.stats.elapsed.as_secs_f64()
+                );
+            });
+        }
         movie.add(&frame.image)?;
         bar.inc(1);
     }

@@ -104,6 +104,12 @@ pub struct SolidArgs {
     /// on load by welding their shared points).
     #[arg(long, value_name = "N", default_value_t = 4)]
     pub pieces: usize,
+    /// Write a time series of N steps sharing the points and cells: the
+    /// output is a .series file naming <stem>_0000.vtu ... beside it, at
+    /// times k / N; "wave" travels, sin(3x + 2 pi t) cos 3y + sin(6z) / 2,
+    /// and "linear" grows, (1 + t)(x + 2y + 3z).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=100_000))]
+    pub steps: Option<u32>,
 }
 
 #[derive(Debug, Serialize)]
@@ -276,9 +282,13 @@ fn solid(args: &SolidArgs) -> anyhow::Result<()> {
         .output
         .extension()
         .map(|e| e.to_string_lossy().to_lowercase());
-    let partitioned = match extension.as_deref() {
-        Some("vtu") => false,
-        Some("pvtu") => true,
+    let partitioned = match (extension.as_deref(), args.steps) {
+        (Some("series"), Some(_)) | (Some("vtu"), None) => false,
+        (Some("pvtu"), None) => true,
+        (_, Some(_)) => bail!(
+            "{}: --steps writes a time series: give a .series output",
+            args.output.display()
+        ),
         _ => bail!(
             "{}: the output must be a .vtu or .pvtu file",
             args.output.display()
@@ -289,7 +299,9 @@ fn solid(args: &SolidArgs) -> anyhow::Result<()> {
         std::fs::create_dir_all(dir)
             .with_context(|| format!("{}: cannot create the folder", dir.display()))?;
     }
-    let files: Vec<FileJson> = if partitioned {
+    let files: Vec<FileJson> = if let Some(steps) = args.steps {
+        write_series(&shell, &args.output, steps)?
+    } else if partitioned {
         write_pvtu(&shell, &args.output, args.pieces)?
             .into_iter()
             .map(|(path, bytes)| FileJson {
@@ -321,6 +333,36 @@ fn solid(args: &SolidArgs) -> anyhow::Result<()> {
     };
     println!("{}", serde_json::to_string_pretty(&json)?);
     Ok(())
+}
+
+/// The steps of a time series beside `output` (`<stem>_0000.vtu` ...) and
+/// the `.series` file naming them, at times k / steps.
+fn write_series(shell: &TorusShell, output: &Path, steps: u32) -> anyhow::Result<Vec<FileJson>> {
+    let stem = output
+        .file_stem()
+        .map_or_else(|| "series".into(), |s| s.to_string_lossy().into_owned());
+    let folder = output.parent().unwrap_or(Path::new(""));
+    let mut files = Vec::new();
+    let mut entries = Vec::new();
+    for k in 0..steps {
+        let name = format!("{stem}_{k:04}.vtu");
+        let path = folder.join(&name);
+        let time = f64::from(k) / f64::from(steps);
+        let bytes = shell.write_vtu_at(&path, time)?;
+        files.push(FileJson {
+            path: path.display().to_string(),
+            bytes,
+        });
+        entries.push(serde_json::json!({ "name": name, "time": time }));
+    }
+    let series = serde_json::json!({ "file-series-version": "1.0", "files": entries });
+    let text = serde_json::to_string_pretty(&series)?;
+    std::fs::write(output, &text).with_context(|| format!("{}: cannot write", output.display()))?;
+    files.push(FileJson {
+        path: output.display().to_string(),
+        bytes: text.len() as u64,
+    });
+    Ok(files)
 }
 
 /// A tetrahedron count: a whole number, or a number with the suffix k, M

@@ -198,11 +198,31 @@ impl TorusShell {
 
     /// The fields [`FIELDS`] at `points`.
     pub fn fields(points: &[Vec3]) -> Vec<ScalarField> {
-        let field = |name: &str, f: fn(Vec3) -> f32| ScalarField {
+        TorusShell::fields_at(points, 0.0)
+    }
+
+    /// The fields [`FIELDS`] at `points` at time `t` of a series: the wave
+    /// travels, `sin(3x + 2 pi t) cos 3y + sin(6z) / 2`, and the linear
+    /// field grows, `(1 + t)(x + 2y + 3z)`; at `t = 0` they are [`wave`]
+    /// and [`linear`].
+    pub fn fields_at(points: &[Vec3], t: f64) -> Vec<ScalarField> {
+        let field = |name: &str, f: &(dyn Fn(Vec3) -> f32 + Sync)| ScalarField {
             name: name.to_string(),
             values: points.par_iter().map(|&p| f(p)).collect(),
         };
-        vec![field(FIELDS[0], wave), field(FIELDS[1], linear)]
+        if t == 0.0 {
+            return vec![field(FIELDS[0], &wave), field(FIELDS[1], &linear)];
+        }
+        let phase = std::f64::consts::TAU * t;
+        let moving = move |p: Vec3| {
+            let p = p.as_dvec3();
+            ((3.0 * p.x + phase).sin() * (3.0 * p.y).cos() + 0.5 * (6.0 * p.z).sin()) as f32
+        };
+        let growing = move |p: Vec3| {
+            let p = p.as_dvec3();
+            ((1.0 + t) * (p.x + 2.0 * p.y + 3.0 * p.z)) as f32
+        };
+        vec![field(FIELDS[0], &moving), field(FIELDS[1], &growing)]
     }
 
     /// The 5 tetrahedra of hexahedron `h` (`iu` fastest).
@@ -233,12 +253,22 @@ impl TorusShell {
     /// # Errors
     /// [`GenerateError::Io`] naming the file.
     pub fn write_vtu(&self, path: &Path) -> Result<u64, GenerateError> {
+        self.write_vtu_at(path, 0.0)
+    }
+
+    /// [`TorusShell::write_vtu`] with the fields at time `t` (see
+    /// [`TorusShell::fields_at`]): the steps of a time series share the
+    /// points and cells.
+    ///
+    /// # Errors
+    /// [`GenerateError::Io`] naming the file.
+    pub fn write_vtu_at(&self, path: &Path, t: f64) -> Result<u64, GenerateError> {
         let io_error = |source| GenerateError::Io {
             file: path.display().to_string(),
             source,
         };
         let points = self.points();
-        let fields = TorusShell::fields(&points);
+        let fields = TorusShell::fields_at(&points, t);
         let index = if 4 * self.tet_count() <= i32::MAX as usize {
             VtuIndex::Int32
         } else {
