@@ -5,7 +5,7 @@
 use tetray_core::{Camera, Method, WalkCounters};
 use tetray_gpu::{GpuContext, GpuIntegrator, GpuRaycaster, GpuRenderOptions, GpuScene};
 use tetray_project::{ProjectOptions, Projection};
-use tetray_raycast::{RenderOptions, render_scalar_with_progress};
+use tetray_raycast::{RenderOptions, render_scalar_watched};
 
 use crate::error::{Context, EngineError, bail, error_chain};
 use crate::frame::{Frame, FrameStats};
@@ -189,8 +189,23 @@ impl Engine {
         setup: &Setup,
         camera: &Camera,
         walk: impl Into<WalkOptions>,
+        size: (u32, u32),
+        progress: Option<&(dyn Fn(usize, usize) + Sync)>,
+    ) -> Result<Frame, EngineError> {
+        self.render_watched(setup, camera, walk, size, progress, None)
+    }
+
+    /// [`Engine::render`] that stops once `cancel` is set, with an error
+    /// that says so: the CPU ray caster between bands of rows; the GPU
+    /// renderers and shear-warp finish the frame they started.
+    pub fn render_watched(
+        &self,
+        setup: &Setup,
+        camera: &Camera,
+        walk: impl Into<WalkOptions>,
         (width, height): (u32, u32),
         progress: Option<&(dyn Fn(usize, usize) + Sync)>,
+        cancel: Option<&std::sync::atomic::AtomicBool>,
     ) -> Result<Frame, EngineError> {
         let walk: WalkOptions = walk.into();
         match self {
@@ -206,12 +221,13 @@ impl Engine {
                     // The global pool, sized once by --threads.
                     threads: None,
                 };
-                let out = render_scalar_with_progress(
+                let out = render_scalar_watched(
                     setup.scene()?,
                     camera,
                     &setup.integrator,
                     &options,
                     progress,
+                    cancel,
                 )
                 .context("rendering")?;
                 let s = out.stats;

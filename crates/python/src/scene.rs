@@ -1,7 +1,9 @@
 //! `Scene`: a mesh loaded once (topology, BVH, integrator tables, GPU
 //! uploads) and rendered from many cameras.
 
-use std::sync::{Mutex, RwLock};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Condvar, Mutex, RwLock};
+use std::time::Duration;
 
 use glam::{DVec3, Vec3};
 use numpy::{IntoPyArray, PyArray3, PyArrayMethods};
@@ -244,19 +246,18 @@ impl Scene {
             None if size != self.size => Some(self.camera.clone()),
             None => None,
         };
-        let image = py.detach(|| {
-            guard(|| {
-                let setup = self.setup.read().expect("setup lock");
-                let camera = match &camera {
-                    Some(options) => setup.camera_for(options, size).map_err(to_py)?,
-                    None => setup.camera,
-                };
-                let frame = self
-                    .engine
-                    .render(&setup, &camera, self.walk, size, None)
-                    .map_err(to_py)?;
-                Ok(frame.image)
-            })
+        let cancel = AtomicBool::new(false);
+        let image = interruptible(py, &cancel, || {
+            let setup = self.setup.read().expect("setup lock");
+            let camera = match &camera {
+                Some(options) => setup.camera_for(options, size).map_err(to_py)?,
+                None => setup.camera,
+            };
+            let frame = self
+                .engine
+                .render_watched(&setup, &camera, self.walk, size, None, Some(&cancel))
+                .map_err(to_py)?;
+            Ok(frame.image)
         })?;
         image_array(py, &image)
     }
@@ -272,22 +273,21 @@ impl Scene {
         if degrees.is_some_and(|d| !d.is_finite()) {
             return Err(value_error(format!("degrees {degrees:?} is not finite")));
         }
-        let image = py.detach(|| {
-            guard(|| {
-                let setup = self.setup.read().expect("setup lock");
-                let mut camera = setup.camera;
-                if let Some(degrees) = degrees {
-                    camera
-                        .azimuth(degrees)
-                        .and_then(|()| camera.orthogonalize_view_up())
-                        .map_err(|e| value_error(format!("turning the camera: {e}")))?;
-                }
-                let frame = self
-                    .engine
-                    .render(&setup, &camera, self.walk, self.size, None)
-                    .map_err(to_py)?;
-                Ok(frame.image)
-            })
+        let cancel = AtomicBool::new(false);
+        let image = interruptible(py, &cancel, || {
+            let setup = self.setup.read().expect("setup lock");
+            let mut camera = setup.camera;
+            if let Some(degrees) = degrees {
+                camera
+                    .azimuth(degrees)
+                    .and_then(|()| camera.orthogonalize_view_up())
+                    .map_err(|e| value_error(format!("turning the camera: {e}")))?;
+            }
+            let frame = self
+                .engine
+                .render_watched(&setup, &camera, self.walk, self.size, None, Some(&cancel))
+                .map_err(to_py)?;
+            Ok(frame.image)
         })?;
         image_array(py, &image)
     }
@@ -446,6 +446,57 @@ fn image_array<'py>(
     let flat: Vec<f32> = image.rgba.iter().flatten().copied().collect();
     flat.into_pyarray(py)
         .reshape([image.height as usize, image.width as usize, 4])
+}
+
+/// Runs `work` on a thread of its own while the calling thread, the GIL
+/// released between checks, runs Python's signal handlers every 50 ms: a
+/// Ctrl-C (KeyboardInterrupt, or whatever a handler raises) sets `cancel`,
+/// waits for `work` to stop (the CPU ray caster stops between bands of
+/// rows) and is raised; the scene is left as it was.
+fn interruptible<T: Send>(
+    py: Python<'_>,
+    cancel: &AtomicBool,
+    work: impl FnOnce() -> PyResult<T> + Send,
+) -> PyResult<T> {
+    let done: Mutex<Option<PyResult<T>>> = Mutex::new(None);
+    let ready = Condvar::new();
+    std::thread::scope(|s| {
+        s.spawn(|| {
+            let result = guard(work);
+            *done.lock().expect("result lock") = Some(result);
+            ready.notify_all();
+        });
+        let wait = |timeout: Option<Duration>| {
+            py.detach(|| {
+                let mut slot = done.lock().expect("result lock");
+                loop {
+                    if let Some(result) = slot.take() {
+                        return Some(result);
+                    }
+                    match timeout {
+                        Some(t) => {
+                            let (next, waited) = ready.wait_timeout(slot, t).expect("result lock");
+                            slot = next;
+                            if waited.timed_out() {
+                                return slot.take();
+                            }
+                        }
+                        None => slot = ready.wait(slot).expect("result lock"),
+                    }
+                }
+            })
+        };
+        loop {
+            if let Some(result) = wait(Some(Duration::from_millis(50))) {
+                return result;
+            }
+            if let Err(interrupt) = py.check_signals() {
+                cancel.store(true, Ordering::Relaxed);
+                let _ = wait(None);
+                return Err(interrupt);
+            }
+        }
+    })
 }
 
 /// Colour points (s, r, g, b) and opacity points (s, alpha) over [0, 1].

@@ -1,6 +1,6 @@
 //! The CPU reference renderer: one ray per pixel, tiles in parallel (rayon).
 
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
 use glam::Vec3;
@@ -106,6 +106,9 @@ pub enum RenderError {
     BadEarlyTermination(f32),
     #[error("cannot start {threads} render threads: {message}")]
     Threads { threads: usize, message: String },
+    /// The caller asked the frame to stop (see [`render_cpu_watched`]).
+    #[error("the render was stopped before it finished")]
+    Cancelled,
 }
 
 /// Renders `scene` seen by `camera`, integrating segments with `integrator`.
@@ -127,6 +130,20 @@ pub fn render_cpu_with_progress<I: SegmentIntegrator + ?Sized>(
     opts: &RenderOptions,
     progress: Option<&(dyn Fn(usize, usize) + Sync)>,
 ) -> Result<RenderOutput, RenderError> {
+    render_cpu_watched(scene, camera, integrator, opts, progress, None)
+}
+
+/// [`render_cpu_with_progress`] that stops once `cancel` is set: bands of
+/// rows not yet begun are skipped, and the frame is
+/// [`RenderError::Cancelled`] (a band stops within one band's time).
+pub fn render_cpu_watched<I: SegmentIntegrator + ?Sized>(
+    scene: &Scene,
+    camera: &Camera,
+    integrator: &I,
+    opts: &RenderOptions,
+    progress: Option<&(dyn Fn(usize, usize) + Sync)>,
+    cancel: Option<&AtomicBool>,
+) -> Result<RenderOutput, RenderError> {
     if opts.early_termination.is_nan() || opts.early_termination <= 0.0 {
         return Err(RenderError::BadEarlyTermination(opts.early_termination));
     }
@@ -134,11 +151,15 @@ pub fn render_cpu_with_progress<I: SegmentIntegrator + ?Sized>(
     let mut image = Image::new(opts.width, opts.height)?;
     let mut job = Frame::new(scene, camera, &rays, integrator, opts);
     job.progress = progress;
+    job.cancel = cancel;
     let start = Instant::now();
     let mut stats = in_pool(opts.threads, || {
         job.bin_entries();
         job.run(&mut image.rgba)
     })?;
+    if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
+        return Err(RenderError::Cancelled);
+    }
     stats.elapsed = start.elapsed();
     stats.eye_inside_bounds = job.eye_inside;
     stats.entry_lists = job.uses_entry_lists();
@@ -182,21 +203,36 @@ pub fn render_scalar_with_progress(
     opts: &RenderOptions,
     progress: Option<&(dyn Fn(usize, usize) + Sync)>,
 ) -> Result<RenderOutput, RenderError> {
+    render_scalar_watched(scene, camera, integrator, opts, progress, None)
+}
+
+/// [`render_scalar_with_progress`] that stops once `cancel` is set, as
+/// [`render_cpu_watched`].
+pub fn render_scalar_watched(
+    scene: &Scene,
+    camera: &Camera,
+    integrator: &ScalarIntegrator,
+    opts: &RenderOptions,
+    progress: Option<&(dyn Fn(usize, usize) + Sync)>,
+    cancel: Option<&AtomicBool>,
+) -> Result<RenderOutput, RenderError> {
     struct Render<'a> {
         scene: &'a Scene,
         camera: &'a Camera,
         opts: &'a RenderOptions,
         progress: Option<&'a (dyn Fn(usize, usize) + Sync)>,
+        cancel: Option<&'a AtomicBool>,
     }
     impl KernelVisitor for Render<'_> {
         type Output = Result<RenderOutput, RenderError>;
         fn visit<K: SegmentKernel>(self, integrator: Typed<'_, K>) -> Self::Output {
-            render_cpu_with_progress(
+            render_cpu_watched(
                 self.scene,
                 self.camera,
                 &integrator,
                 self.opts,
                 self.progress,
+                self.cancel,
             )
         }
     }
@@ -205,6 +241,7 @@ pub fn render_scalar_with_progress(
         camera,
         opts,
         progress,
+        cancel,
     })
 }
 
@@ -258,6 +295,8 @@ pub(crate) struct Frame<'a, I: ?Sized> {
     eye_inside: bool,
     bounds: (Vec3, Vec3),
     progress: Option<&'a (dyn Fn(usize, usize) + Sync)>,
+    /// Set by the caller to stop the frame: bands not begun are skipped.
+    cancel: Option<&'a AtomicBool>,
     rows_done: AtomicUsize,
     /// Whether the mesh is large enough to prefetch (see
     /// [`LARGE_MESH_TETS`]).
@@ -295,6 +334,7 @@ impl<'a, I: SegmentIntegrator + ?Sized> Frame<'a, I> {
             eye_inside: camera.is_inside_bounds(lo, hi),
             bounds: (lo, hi),
             progress: None,
+            cancel: None,
             rows_done: AtomicUsize::new(0),
             large: scene.tet_count() >= LARGE_MESH_TETS,
             wide: wide_cpu(),
@@ -374,6 +414,9 @@ impl<I: SegmentIntegrator + ?Sized> Frame<'_, I> {
             .par_chunks_mut(self.width * TILE)
             .enumerate()
             .map(|(band, rows)| {
+                if self.cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
+                    return RenderStats::default();
+                }
                 let band_rows = rows.len() / self.width;
                 self.band(band * TILE, band_rows, Walker::new, |walker, index| {
                     let light = walker.light;

@@ -16,7 +16,8 @@ mod walk;
 
 pub use cpu::{
     RayTrace, RenderError, RenderOptions, RenderOutput, RenderStats, render_cpu,
-    render_cpu_with_progress, render_scalar, render_scalar_with_progress, trace_pixel, wide_cpu,
+    render_cpu_watched, render_cpu_with_progress, render_scalar, render_scalar_watched,
+    render_scalar_with_progress, trace_pixel, wide_cpu,
 };
 pub use fragment::{Fragment, FragmentOutput, render_fragments, render_scalar_fragments};
 pub use walk::{SegmentIntegrator, packed_exit_table};
