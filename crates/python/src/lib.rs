@@ -12,6 +12,7 @@
 
 mod extras;
 mod grid;
+mod interrupt;
 mod movie;
 mod scene;
 

@@ -1,9 +1,8 @@
 //! `Scene`: a mesh loaded once (topology, BVH, integrator tables, GPU
 //! uploads) and rendered from many cameras.
 
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Condvar, Mutex, RwLock};
-use std::time::Duration;
+use std::sync::atomic::AtomicBool;
+use std::sync::{Mutex, RwLock};
 
 use glam::{DVec3, Vec3};
 use numpy::{IntoPyArray, PyArray3, PyArrayMethods};
@@ -17,6 +16,7 @@ use tetray_integrate::{ColorPoint, Method, OpacityMode, OpacityPoint};
 use tetray_mesh::MeshSummary;
 
 use crate::grid::Grid;
+use crate::interrupt::interruptible;
 use crate::{guard, to_py, value_error};
 
 /// A prepared mesh and renderer.
@@ -446,57 +446,6 @@ fn image_array<'py>(
     let flat: Vec<f32> = image.rgba.iter().flatten().copied().collect();
     flat.into_pyarray(py)
         .reshape([image.height as usize, image.width as usize, 4])
-}
-
-/// Runs `work` on a thread of its own while the calling thread, the GIL
-/// released between checks, runs Python's signal handlers every 50 ms: a
-/// Ctrl-C (KeyboardInterrupt, or whatever a handler raises) sets `cancel`,
-/// waits for `work` to stop (the CPU ray caster stops between bands of
-/// rows) and is raised; the scene is left as it was.
-fn interruptible<T: Send>(
-    py: Python<'_>,
-    cancel: &AtomicBool,
-    work: impl FnOnce() -> PyResult<T> + Send,
-) -> PyResult<T> {
-    let done: Mutex<Option<PyResult<T>>> = Mutex::new(None);
-    let ready = Condvar::new();
-    std::thread::scope(|s| {
-        s.spawn(|| {
-            let result = guard(work);
-            *done.lock().expect("result lock") = Some(result);
-            ready.notify_all();
-        });
-        let wait = |timeout: Option<Duration>| {
-            py.detach(|| {
-                let mut slot = done.lock().expect("result lock");
-                loop {
-                    if let Some(result) = slot.take() {
-                        return Some(result);
-                    }
-                    match timeout {
-                        Some(t) => {
-                            let (next, waited) = ready.wait_timeout(slot, t).expect("result lock");
-                            slot = next;
-                            if waited.timed_out() {
-                                return slot.take();
-                            }
-                        }
-                        None => slot = ready.wait(slot).expect("result lock"),
-                    }
-                }
-            })
-        };
-        loop {
-            if let Some(result) = wait(Some(Duration::from_millis(50))) {
-                return result;
-            }
-            if let Err(interrupt) = py.check_signals() {
-                cancel.store(true, Ordering::Relaxed);
-                let _ = wait(None);
-                return Err(interrupt);
-            }
-        }
-    })
 }
 
 /// Colour points (s, r, g, b) and opacity points (s, alpha) over [0, 1].
