@@ -2,6 +2,8 @@
 //! (`WGPU_BACKEND`, `WGPU_ADAPTER_NAME`, `WGPU_POWER_PREF`), with the
 //! adapter's own limits requested so that large meshes fit.
 
+use std::sync::{Arc, Mutex};
+
 use crate::GpuError;
 
 /// Whether Mesa's Vulkan device-selection layer could only fail noisily
@@ -45,6 +47,10 @@ pub struct GpuContext {
     pub limits: wgpu::Limits,
     /// Whether passes can be timed with timestamp queries.
     pub timestamps: bool,
+    /// Why the device was lost, once it is (a driver reset, a removed
+    /// GPU, a destroyed device): every operation then fails with
+    /// [`GpuError::DeviceLost`] instead of reaching the device.
+    lost: Arc<Mutex<Option<String>>>,
 }
 
 impl GpuContext {
@@ -88,13 +94,61 @@ impl GpuContext {
                 adapter: info.name.clone(),
                 message: e.to_string(),
             })?;
-        Ok(GpuContext {
+        Ok(GpuContext::with_device(
+            device, queue, info, limits, timestamps,
+        ))
+    }
+
+    /// The context of `device`, watching for its loss.
+    pub(crate) fn with_device(
+        device: wgpu::Device,
+        queue: wgpu::Queue,
+        info: wgpu::AdapterInfo,
+        limits: wgpu::Limits,
+        timestamps: bool,
+    ) -> GpuContext {
+        let lost = Arc::new(Mutex::new(None));
+        let record = Arc::clone(&lost);
+        device.set_device_lost_callback(move |reason, message| {
+            let why = if message.is_empty() {
+                format!("{reason:?}")
+            } else {
+                format!("{reason:?}: {message}")
+            };
+            *record
+                .lock()
+                .unwrap_or_else(std::sync::PoisonError::into_inner) = Some(why);
+        });
+        GpuContext {
             device,
             queue,
             info,
             limits,
             timestamps,
-        })
+            lost,
+        }
+    }
+
+    /// Fails with [`GpuError::DeviceLost`] once the device is lost (the
+    /// loss is learnt from the device's callback, which a poll delivers).
+    pub fn check(&self) -> Result<(), GpuError> {
+        let polled = self.device.poll(wgpu::PollType::Poll);
+        let lost = self
+            .lost
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+            .clone();
+        match (lost, polled) {
+            (Some(why), _) => Err(GpuError::DeviceLost {
+                adapter: self.info.name.clone(),
+                why,
+            }),
+            (None, Err(e)) => Err(GpuError::DeviceLost {
+                adapter: self.info.name.clone(),
+                why: e.to_string(),
+            }),
+            (None, Ok(_)) => Ok(()),
+        }
     }
 
     /// Submits `commands` and waits until the device has run them; the
@@ -103,14 +157,16 @@ impl GpuContext {
         &self,
         commands: wgpu::CommandBuffer,
     ) -> Result<std::time::Duration, GpuError> {
+        self.check()?;
         let start = std::time::Instant::now();
         let submission = self.queue.submit([commands]);
-        self.device
-            .poll(wgpu::PollType::Wait {
-                submission_index: Some(submission),
-                timeout: None,
-            })
-            .map_err(|e| GpuError::Driver(e.to_string()))?;
+        let waited = self.device.poll(wgpu::PollType::Wait {
+            submission_index: Some(submission),
+            timeout: None,
+        });
+        // A loss during the work shows here first.
+        self.check()?;
+        waited.map_err(|e| GpuError::Driver(e.to_string()))?;
         Ok(start.elapsed())
     }
 

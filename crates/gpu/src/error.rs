@@ -51,4 +51,11 @@ pub enum GpuError {
     Readback(String),
     #[error("the GPU reported an error: {0}")]
     Driver(String),
+    /// The device stopped working (driver reset, GPU removed, device
+    /// destroyed); a new context is needed.
+    #[error(
+        "the GPU device ({adapter}) was lost ({why}); start again, or render with \
+         --renderer cpu"
+    )]
+    DeviceLost { adapter: String, why: String },
 }

@@ -156,6 +156,7 @@ impl GpuRaycaster {
         camera: &Camera,
         opts: &GpuRenderOptions,
     ) -> Result<GpuFrame, GpuError> {
+        ctx.check()?;
         let (width, height) = (opts.width, opts.height);
         let target = GpuTarget::new(ctx, width, height)?;
         let device = &ctx.device;

@@ -17,13 +17,7 @@ impl GpuContext {
     ) -> GpuContext {
         let limits = device.limits();
         let timestamps = device.features().contains(wgpu::Features::TIMESTAMP_QUERY);
-        GpuContext {
-            device,
-            queue,
-            info,
-            limits,
-            timestamps,
-        }
+        GpuContext::with_device(device, queue, info, limits, timestamps)
     }
 
     /// What to ask `adapter` for, as [`GpuContext::new`] does: its own

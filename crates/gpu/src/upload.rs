@@ -122,6 +122,7 @@ impl GpuScene {
         tet_limit: u64,
         point_limit: u64,
     ) -> Result<GpuScene, GpuError> {
+        ctx.check()?;
         let limits = &ctx.limits;
         let cap = |limit: u64| {
             limit
@@ -356,6 +357,7 @@ impl GpuIntegrator {
     /// Uploads a transfer function and method ([`IntegratorData::new`] then
     /// [`GpuIntegrator::upload`]).
     pub fn new(ctx: &GpuContext, integrator: &ScalarIntegrator) -> Result<GpuIntegrator, GpuError> {
+        ctx.check()?;
         Ok(GpuIntegrator::upload(ctx, IntegratorData::new(integrator)?))
     }
 

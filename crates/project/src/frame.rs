@@ -155,6 +155,7 @@ impl Projection {
         camera: &Camera,
         opts: &ProjectOptions,
     ) -> Result<ProjectFrame, ProjectError> {
+        ctx.check()?;
         let start = Instant::now();
         let view = View::new(camera, opts.width, opts.height)?;
         let intervals = self.intervals_for(integrator.data(), opts.adaptive_tf);

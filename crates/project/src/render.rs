@@ -26,6 +26,7 @@ pub struct GpuProjectScene {
 
 impl GpuProjectScene {
     pub fn upload(ctx: &GpuContext, scene: &ProjectScene) -> Result<GpuProjectScene, ProjectError> {
+        ctx.check()?;
         let limit = ctx
             .limits
             .max_storage_buffer_binding_size
