@@ -208,3 +208,60 @@ fn an_mp4_holds_one_frame_per_step() {
     assert!(probe.status.success(), "{}", text(&probe.stderr));
     assert_eq!(text(&probe.stdout).trim(), "40,32,3");
 }
+
+/// A series whose steps share points and cells (`generate solid --steps`,
+/// unstructured): the later steps keep the first step's scene (topology,
+/// BVH, walk records) and take only their fields, and their frames are
+/// still the renders of their steps, bit for bit.
+#[test]
+fn steps_that_share_cells_keep_the_scene() {
+    let dir = scratch("animate", "kept");
+    ok(
+        &dir,
+        &[
+            "generate",
+            "solid",
+            "--tets",
+            "3000",
+            "--steps",
+            "3",
+            "-o",
+            "run.series",
+        ],
+    );
+    let common = ["--renderer", "cpu", "--size", SIZE, "--scalar", "linear"];
+    let stdout = ok(
+        &dir,
+        &[&["animate", "run.series", "-o", "frames/"][..], &common].concat(),
+    );
+    for k in 1..3 {
+        assert!(stdout.contains(&format!("step {k}: load")), "{stdout}");
+    }
+    assert_eq!(stdout.matches("scene kept").count(), 2, "{stdout}");
+    let range = stdout
+        .lines()
+        .find_map(|l| l.strip_prefix("colour range ["))
+        .and_then(|l| l.split(']').next())
+        .expect("the range line")
+        .replace(' ', "");
+    for k in 0..3 {
+        let step = k.to_string();
+        let png = format!("render{k}.png");
+        let clim = format!("--clim={range}");
+        let args = [
+            "render",
+            "run.series",
+            "--time-step",
+            &step,
+            &clim,
+            "-o",
+            &png,
+        ];
+        ok(&dir, &[&args[..], &common].concat());
+        assert_eq!(
+            rgb(&dir.join(format!("frames/frame_{k:04}.png"))),
+            rgb(&dir.join(&png)),
+            "step {k}"
+        );
+    }
+}

@@ -99,18 +99,46 @@ pub fn run(args: &AnimateArgs) -> anyhow::Result<()> {
     for index in 0..count {
         let step = steps.get(index).copied();
         let loaded = current.as_ref().is_none_or(|(s, _, _)| *s != step);
+        // What making this frame's setup cost: load, scene, whether the
+        // previous step's scene was kept.
+        let mut cost = (0.0, 0.0, false);
         if loaded {
             flags.mesh.time_step = step;
-            let frame = scene::FrameArgs {
-                flags: &flags,
-                walk: &args.walk,
-                size: args.size,
+            let reused = match (&mut current, step, &flags.mesh.mesh) {
+                (Some((at, setup, engine)), Some(k), Some(path)) => {
+                    let start = std::time::Instant::now();
+                    let next = tetray_io::load(path, &load_options(args, Some(k)))?;
+                    cost.0 = start.elapsed().as_secs_f64();
+                    let start = std::time::Instant::now();
+                    let log = tetray_engine::Log {
+                        info: &quiet,
+                        warn: &scene::warn,
+                    };
+                    let kept = setup.next_step(&next, log)?;
+                    if kept {
+                        *engine = Engine::new(args.walk.renderer, setup, &quiet)?;
+                        *at = step;
+                        cost.1 = start.elapsed().as_secs_f64();
+                        cost.2 = true;
+                    }
+                    kept
+                }
+                _ => false,
             };
-            // The first step's setup is described; the others repeat it.
-            let log: &dyn Fn(String) = if index == 0 { &say } else { &quiet };
-            let setup = scene::prepare(frame, log)?;
-            let engine = Engine::new(args.walk.renderer, &setup, log)?;
-            current = Some((step, setup, engine));
+            if !reused {
+                let frame = scene::FrameArgs {
+                    flags: &flags,
+                    walk: &args.walk,
+                    size: args.size,
+                };
+                // The first step's setup is described; the others repeat it.
+                let log: &dyn Fn(String) = if index == 0 { &say } else { &quiet };
+                let setup = scene::prepare(frame, log)?;
+                let engine = Engine::new(args.walk.renderer, &setup, log)?;
+                cost.0 = setup.load_time.as_secs_f64();
+                cost.1 = setup.scene_time.as_secs_f64();
+                current = Some((step, setup, engine));
+            }
         }
         let Some((_, setup, engine)) = &current else {
             unreachable!("made above");
@@ -125,12 +153,14 @@ pub fn run(args: &AnimateArgs) -> anyhow::Result<()> {
         let frame = engine.render(setup, &camera, &args.walk, args.size, None)?;
         super::render::warn_about(&frame.stats.counters);
         if let (true, Some(step)) = (loaded, step) {
-            // What each step costs: its file, its scene, its frame.
+            // What each step costs: its file, its scene (kept from the step
+            // before when the cells and points are the same), its frame.
+            let scene = if cost.2 { "scene kept" } else { "scene" };
             bar.suspend(|| {
                 println!(
-                    "step {step}: load {:.3} s, scene {:.3} s, integrator {:.3} s, frame {:.3} s",
-                    setup.load_time.as_secs_f64(),
-                    setup.scene_time.as_secs_f64(),
+                    "step {step}: load {:.3} s, {scene} {:.3} s, integrator {:.3} s, frame {:.3} s",
+                    cost.0,
+                    cost.1,
                     setup.integrator_time.as_secs_f64(),
                     frame.stats.elapsed.as_secs_f64()
                 );

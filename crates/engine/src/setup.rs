@@ -382,6 +382,54 @@ impl Setup {
         Ok(())
     }
 
+    /// Takes the fields of `loaded`, another time step of the same data,
+    /// when its points and cells are this setup's (see
+    /// [`Scene::with_step`]): the topology, BVH and walk records are kept,
+    /// the transfer function and integrator made again for the field's
+    /// range (unchanged under a fixed range). `false` when the step's mesh
+    /// differs, or the volume is not tetrahedra alone: prepare it anew.
+    pub fn next_step(&mut self, loaded: &LoadedMesh, log: Log<'_>) -> Result<bool, EngineError> {
+        let Volume::Tetrahedra(scene) = &self.volume else {
+            return Ok(false);
+        };
+        let name = &self.extent.name;
+        let Some(step) = scene
+            .with_step(&loaded.mesh)
+            .with_context(|| format!("{name}: field {:?}", self.extent.field))?
+        else {
+            return Ok(false);
+        };
+        let range = value_range(&step.scalar);
+        let tf_range = self.choice.tf_range(range);
+        if self.choice.range.is_none() {
+            let tf = tf::transfer_function(
+                &self.choice.tf,
+                &self.extent.field,
+                tf_range,
+                self.extent.bounds,
+                self.unit_distance,
+                log,
+            )?;
+            let options = tf::integrator_options(
+                &self.choice,
+                self.unit_distance,
+                self.extent.mean_chord,
+                tf_range,
+            );
+            let (integrator, time) = tf::integrator(self.method, &tf, &options)?;
+            self.tf = tf;
+            self.integrator_options = options;
+            self.integrator = integrator;
+            self.integrator_time = time;
+        } else {
+            // The integrator of the fixed range is kept: nothing was made.
+            self.integrator_time = Duration::ZERO;
+        }
+        self.extent.range = range;
+        self.volume = Volume::Tetrahedra(Arc::new(step));
+        Ok(true)
+    }
+
     fn scene_slot(&mut self) -> Option<&mut Arc<Scene>> {
         match &mut self.volume {
             Volume::Tetrahedra(scene)

@@ -6,7 +6,9 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use glam::Vec3;
 use rayon::prelude::*;
 use tetray_boundary_bvh::{BoundaryBvh, BuildPreset, BvhError};
-use tetray_mesh::{FACE_VERTICES, LoadedMesh, NO_NEIGHBOR, TetMesh, Topology, first_position};
+use tetray_mesh::{
+    FACE_VERTICES, LoadedMesh, NO_NEIGHBOR, ScalarField, TetMesh, Topology, first_position,
+};
 
 use crate::order::{Reorder, morton_reorder};
 
@@ -216,7 +218,14 @@ impl Scene {
     /// (the fields were renumbered with the points). Errors name the
     /// input's point ids.
     pub fn with_field(&self, field: &str) -> Result<Scene, SceneError> {
-        let scalar = active_field(&self.mesh, field).map_err(|e| match e {
+        self.with_mesh(self.mesh.clone(), field)
+    }
+
+    /// This scene's topology, BVH and walk records over `mesh` (this
+    /// scene's points and tetrahedra, perhaps other fields), with `field`
+    /// active.
+    fn with_mesh(&self, mesh: TetMesh, field: &str) -> Result<Scene, SceneError> {
+        let scalar = active_field(&mesh, field).map_err(|e| match e {
             SceneError::NonFiniteScalar { name, point, value } => SceneError::NonFiniteScalar {
                 name,
                 point: self.input_point(point as u32) as usize,
@@ -224,15 +233,14 @@ impl Scene {
             },
             other => other,
         })?;
-        let points = self
-            .mesh
+        let points = mesh
             .points
             .iter()
             .zip(&scalar)
             .map(|(p, &s)| [p.x, p.y, p.z, s])
             .collect();
         Ok(Scene {
-            mesh: self.mesh.clone(),
+            mesh,
             topology: self.topology.clone(),
             bvh: self.bvh.clone(),
             field: field.to_string(),
@@ -242,6 +250,46 @@ impl Scene {
             bounds: self.bounds,
             order: self.order.clone(),
         })
+    }
+
+    /// The same scene with the point fields of `mesh`, another time step of
+    /// the same data, when its points and tetrahedra are this scene's
+    /// input exactly (bit for bit, in the input's numbering): the topology,
+    /// the BVH and the walk records are kept, the fields renumbered as the
+    /// points were and the active one taken again. `None` when the points
+    /// or cells differ (a moving mesh, another mesh): build a new scene.
+    pub fn with_step(&self, mesh: &TetMesh) -> Result<Option<Scene>, SceneError> {
+        let n = self.mesh.points.len();
+        if mesh.points.len() != n || mesh.tets.len() != self.mesh.tets.len() {
+            return Ok(None);
+        }
+        let point_from = |p: usize| self.input_point(p as u32) as usize;
+        let same_points = (0..n).all(|p| {
+            let (a, b) = (self.mesh.points[p], mesh.points[point_from(p)]);
+            a.to_array().map(f32::to_bits) == b.to_array().map(f32::to_bits)
+        });
+        let same_tets = same_points
+            && (0..self.mesh.tets.len()).all(|t| {
+                let input = mesh.tets[self.input_tet(t as u32) as usize];
+                self.mesh.tets[t].map(|p| point_from(p as usize) as u32) == input
+            });
+        if !same_tets {
+            return Ok(None);
+        }
+        let fields = mesh
+            .fields
+            .iter()
+            .map(|f| ScalarField {
+                name: f.name.clone(),
+                values: (0..n).map(|p| f.values[point_from(p)]).collect(),
+            })
+            .collect();
+        let step = TetMesh {
+            points: self.mesh.points.clone(),
+            tets: self.mesh.tets.clone(),
+            fields,
+        };
+        self.with_mesh(step, &self.field).map(Some)
     }
 
     /// The renumbering applied to the input (`None`: input order).
