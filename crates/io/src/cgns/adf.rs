@@ -388,6 +388,8 @@ impl Adf {
                 found: held,
             });
         }
+        // The bytes, and the values decoded from them.
+        crate::preflight::check(&self.name, || format!("the data of {path}"), total * 2)?;
         let mut out = Vec::with_capacity(total as usize);
         for (s, e) in spans {
             let take = (e - s).min(total - out.len() as u64);
@@ -399,49 +401,16 @@ impl Adf {
         Ok(out)
     }
 
-    /// The data of the node at `path` as f64, in Fortran order.
-    pub fn data_f64(&self, path: &str) -> Result<Vec<f64>, CgnsError> {
+    /// The data type and bytes of the node at `path`.
+    fn typed(&self, path: &str) -> Result<(&str, Vec<u8>), CgnsError> {
         let node = self.get(path)?;
-        let kind = node.data_type.clone();
-        let raw = self.raw(node, path)?;
-        crate::preflight::check(
-            &self.name,
-            || format!("the data of {path}"),
-            raw.len() as u64 * 2,
-        )?;
-        let mut out = Vec::new();
-        match kind.as_str() {
-            "R4" => out.extend(
-                raw.chunks_exact(4)
-                    .map(|b| f64::from(f32::from_bits(self.int(b) as u32))),
-            ),
-            "R8" => out.extend(raw.chunks_exact(8).map(|b| f64::from_bits(self.int(b)))),
-            "I4" => out.extend(
-                raw.chunks_exact(4)
-                    .map(|b| f64::from(self.int(b) as u32 as i32)),
-            ),
-            "U4" => out.extend(raw.chunks_exact(4).map(|b| self.int(b) as f64)),
-            "I8" => out.extend(raw.chunks_exact(8).map(|b| self.int(b) as i64 as f64)),
-            "U8" => out.extend(raw.chunks_exact(8).map(|b| self.int(b) as f64)),
-            "C1" | "B1" => out.extend(raw.iter().map(|&b| f64::from(b))),
-            "MT" => {}
-            other => return Err(self.invalid(path, format!("data type {other} is not numeric"))),
-        }
-        Ok(out)
+        Ok((node.data_type.as_str(), self.raw(node, path)?))
     }
 
-    /// The data of the node at `path` as i64 (integers, and characters by
-    /// their codes).
-    pub fn data_i64(&self, path: &str) -> Result<Vec<i64>, CgnsError> {
-        let node = self.get(path)?;
-        let kind = node.data_type.clone();
-        let raw = self.raw(node, path)?;
-        crate::preflight::check(
-            &self.name,
-            || format!("the data of {path}"),
-            raw.len() as u64 * 2,
-        )?;
-        Ok(match kind.as_str() {
+    /// Integers of type `kind` (characters and bytes by their codes) in the
+    /// file's byte order; `None` for a type that is not an integer.
+    fn integers(&self, kind: &str, raw: &[u8]) -> Option<Vec<i64>> {
+        Some(match kind {
             "I4" => raw
                 .chunks_exact(4)
                 .map(|b| i64::from(self.int(b) as u32 as i32))
@@ -450,8 +419,39 @@ impl Adf {
             "I8" | "U8" => raw.chunks_exact(8).map(|b| self.int(b) as i64).collect(),
             "C1" | "B1" => raw.iter().map(|&b| i64::from(b)).collect(),
             "MT" => Vec::new(),
-            other => return Err(self.invalid(path, format!("data type {other} is not an integer"))),
+            _ => return None,
         })
+    }
+
+    /// The data of the node at `path` as f64, in Fortran order.
+    pub fn data_f64(&self, path: &str) -> Result<Vec<f64>, CgnsError> {
+        let (kind, raw) = self.typed(path)?;
+        Ok(match kind {
+            "R4" => raw
+                .chunks_exact(4)
+                .map(|b| f64::from(f32::from_bits(self.int(b) as u32)))
+                .collect(),
+            "R8" => raw
+                .chunks_exact(8)
+                .map(|b| f64::from_bits(self.int(b)))
+                .collect(),
+            // Unsigned: past i64's range too.
+            "U8" => raw.chunks_exact(8).map(|b| self.int(b) as f64).collect(),
+            _ => match self.integers(kind, &raw) {
+                Some(values) => values.into_iter().map(|v| v as f64).collect(),
+                None => {
+                    return Err(self.invalid(path, format!("data type {kind} is not numeric")));
+                }
+            },
+        })
+    }
+
+    /// The data of the node at `path` as i64 (integers, and characters by
+    /// their codes).
+    pub fn data_i64(&self, path: &str) -> Result<Vec<i64>, CgnsError> {
+        let (kind, raw) = self.typed(path)?;
+        self.integers(kind, &raw)
+            .ok_or_else(|| self.invalid(path, format!("data type {kind} is not an integer")))
     }
 }
 
