@@ -13,7 +13,7 @@ mod zone;
 
 use std::path::Path;
 
-use tetray_mesh::cells::{Linearize, ReadOptions, VtkRead, weld};
+use tetray_mesh::cells::{Linearize, ReadOptions, VtkRead};
 
 use crate::preflight::MemoryError;
 use crate::time::choose_step;
@@ -296,13 +296,7 @@ pub fn read_cgns(path: &Path, opts: &CgnsOptions) -> Result<CgnsRead, CgnsError>
         });
     }
     let zones = grids.len();
-    let mut grid = if zones == 1 {
-        grids.pop().expect("one zone")
-    } else {
-        let mut g = weld(grids, &name).map_err(|e| CgnsError::from(VtkError::from(e)))?;
-        g.pieces.pieces = zones;
-        g
-    };
+    let mut grid = crate::vtk::join_grids(grids, &name)?;
     grid.warnings.extend(warnings);
     let read = crate::vtk::assemble_grid(
         grid,

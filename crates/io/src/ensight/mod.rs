@@ -12,7 +12,7 @@ mod vars;
 
 use std::path::{Path, PathBuf};
 
-use tetray_mesh::cells::{Linearize, ReadOptions, VtkRead, weld};
+use tetray_mesh::cells::{Linearize, ReadOptions, VtkRead};
 
 use crate::time::choose_step;
 use crate::vtk::VtkError;
@@ -280,15 +280,8 @@ pub fn read_ensight(path: &Path, opts: &EnSightOptions) -> Result<EnSightRead, E
         src.select_step(inner.unwrap_or(0))?;
         vars::read_variable(&mut src, &mut parts, &v.name, v.width, v.per_node)?;
     }
-    let mut grids: Vec<_> = parts.into_iter().map(|p| p.grid).collect();
-    let mut grid = if grids.len() == 1 {
-        grids.pop().expect("one part")
-    } else {
-        let count = grids.len();
-        let mut g = weld(grids, &name).map_err(|e| EnSightError::from(VtkError::from(e)))?;
-        g.pieces.pieces = count;
-        g
-    };
+    let grids: Vec<_> = parts.into_iter().map(|p| p.grid).collect();
+    let mut grid = crate::vtk::join_grids(grids, &name)?;
     grid.warnings.extend(warnings);
     let read = crate::vtk::assemble_grid(
         grid,

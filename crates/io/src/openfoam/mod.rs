@@ -15,7 +15,7 @@ mod mesh;
 use std::io::Read;
 use std::path::{Path, PathBuf};
 
-use tetray_mesh::cells::{CellError, Linearize, ReadOptions, VtkRead, weld};
+use tetray_mesh::cells::{CellError, Linearize, ReadOptions, VtkRead};
 
 use crate::time::choose_step;
 use crate::vtk::VtkError;
@@ -141,14 +141,7 @@ pub fn read_openfoam(path: &Path, opts: &OpenFoamOptions) -> Result<OpenFoamRead
         }
         grids.push(grid);
     }
-    let count = grids.len();
-    let mut grid = if count == 1 {
-        grids.pop().expect("one mesh")
-    } else {
-        let mut g = weld(grids, &name).map_err(|e| OpenFoamError::from(VtkError::from(e)))?;
-        g.pieces.pieces = count;
-        g
-    };
+    let mut grid = crate::vtk::join_grids(grids, &name)?;
     warnings.dedup();
     grid.warnings.extend(warnings);
     if grid.types.is_empty() {

@@ -153,6 +153,22 @@ pub fn assemble_grid(
     assemble(grid, name, opts)
 }
 
+/// The grids of one dataset (CGNS zones, EnSight parts, OpenFOAM
+/// processors) as one: a single grid as it is, several welded at their
+/// shared points and counted as pieces.
+pub(crate) fn join_grids(
+    mut grids: Vec<tetray_mesh::cells::CellGrid>,
+    name: &str,
+) -> Result<tetray_mesh::cells::CellGrid, VtkError> {
+    let count = grids.len();
+    if count == 1 {
+        return Ok(grids.pop().expect("one grid"));
+    }
+    let mut grid = tetray_mesh::cells::weld(grids, name)?;
+    grid.pieces.pieces = count;
+    Ok(grid)
+}
+
 /// Reads a parallel XML file (`.pvtu`, `.pvts`, `.pvtr`, `.pvti`): every
 /// piece it names, relative to its folder, read in parallel, ghost cells
 /// dropped, shared points welded into one mesh.
