@@ -3,28 +3,16 @@
 //! small files written for each part of the standard in both storages
 //! (`data/cgns`, made by the script beside them).
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use tetray_io::{LoadOptions, LoadedMesh, load};
 
-fn data(path: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../data")
-        .join(path)
-}
+mod formats_common;
+
+use formats_common::{at_step, data, field};
 
 fn loaded(path: &str) -> LoadedMesh {
-    load(&data(path), &LoadOptions::default()).unwrap_or_else(|e| panic!("{path}: {e}"))
-}
-
-fn field<'a>(mesh: &'a LoadedMesh, name: &str) -> &'a [f32] {
-    &mesh
-        .mesh
-        .fields
-        .iter()
-        .find(|f| f.name == name)
-        .expect(name)
-        .values
+    at_step(&data(path), None)
 }
 
 /// Four structured zones of 6150, 24750, 16762 and 10914 vertices and

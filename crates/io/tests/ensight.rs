@@ -5,39 +5,15 @@
 
 use std::path::{Path, PathBuf};
 
-use tetray_io::{LoadOptions, LoadedMesh, load};
+use tetray_io::{LoadOptions, load};
 
-fn data(path: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../data/real/ensight")
-        .join(path)
-}
+mod formats_common;
 
-fn scratch(name: &str) -> PathBuf {
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
-        .join("ensight")
-        .join(name);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("scratch folder");
-    dir
-}
+use formats_common::{at_step, field, scratch};
 
-fn at_step(path: &Path, time_step: Option<usize>) -> LoadedMesh {
-    let opts = LoadOptions {
-        time_step,
-        ..LoadOptions::default()
-    };
-    load(path, &opts).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
-}
-
-fn field<'a>(mesh: &'a LoadedMesh, name: &str) -> &'a [f32] {
-    &mesh
-        .mesh
-        .fields
-        .iter()
-        .find(|f| f.name == name)
-        .expect(name)
-        .values
+/// A file of VTK's EnSight samples.
+fn ensight(name: &str) -> PathBuf {
+    formats_common::data("real/ensight").join(name)
 }
 
 /// Counts from VTK 9.1's vtkGenericEnSightReader: LShape's hexa8 part has
@@ -46,7 +22,7 @@ fn field<'a>(mesh: &'a LoadedMesh, name: &str) -> &'a [f32] {
 /// points, bars, faces and an n-sided polygon; the block is 16 x 11 x 4.
 #[test]
 fn vtks_samples_read_with_vtks_counts() {
-    let lshape = at_step(&data("LShape.case"), None);
+    let lshape = at_step(&ensight("LShape.case"), None);
     assert_eq!(lshape.report.format, "EnSight Gold");
     assert_eq!(lshape.report.cells_split, 3);
     assert_eq!(lshape.mesh.points.len(), 17);
@@ -61,7 +37,7 @@ fn vtks_samples_read_with_vtks_counts() {
             .iter()
             .all(|&v| v == 0.0)
     );
-    let last = at_step(&data("LShape.case"), Some(10));
+    let last = at_step(&ensight("LShape.case"), Some(10));
     assert!(
         field(&last, "displacement_magnitude")
             .iter()
@@ -69,7 +45,7 @@ fn vtks_samples_read_with_vtks_counts() {
     );
     assert!(last.mesh.tets == lshape.mesh.tets);
 
-    let elements = at_step(&data("elements.case"), None);
+    let elements = at_step(&ensight("elements.case"), None);
     // Seven split (the linear tetrahedron is not), 8 lower-dimensional
     // cells skipped.
     assert_eq!(elements.report.cells_split, 7);
@@ -86,7 +62,7 @@ fn vtks_samples_read_with_vtks_counts() {
         field(&elements, name);
     }
 
-    let block = at_step(&data("RectGrid_ascii.case"), None);
+    let block = at_step(&ensight("RectGrid_ascii.case"), None);
     assert_eq!(block.mesh.points.len(), 16 * 11 * 4);
     assert_eq!(block.report.cells_split, 15 * 10 * 3);
 }
@@ -219,7 +195,7 @@ fn write_case(dir: &Path, binary: bool) {
 #[test]
 fn written_cases_weld_their_parts_and_follow_the_time_set() {
     for binary in [false, true] {
-        let dir = scratch(if binary { "binary" } else { "ascii" });
+        let dir = scratch("ensight", if binary { "binary" } else { "ascii" });
         write_case(&dir, binary);
         let case = dir.join("box.case");
         for (step, factor) in [(0, 1.0f32), (1, 2.0)] {
@@ -246,7 +222,7 @@ fn written_cases_weld_their_parts_and_follow_the_time_set() {
 /// same mesh; never a panic.
 #[test]
 fn every_truncation_is_an_error_or_the_same_mesh() {
-    let dir = scratch("cut");
+    let dir = scratch("ensight", "cut");
     for name in [
         "LShape.case",
         "LShape_geometry.geo",
@@ -256,14 +232,14 @@ fn every_truncation_is_an_error_or_the_same_mesh() {
         "RectGrid_ascii_pd_scalars",
         "RectGrid_ascii_pd_vectors",
     ] {
-        std::fs::copy(data(name), dir.join(name)).unwrap();
+        std::fs::copy(ensight(name), dir.join(name)).unwrap();
     }
     for (case, file) in [
         ("LShape.case", "LShape_geometry.geo"),
         ("LShape.case", "LShape_displacement.var"),
         ("RectGrid_ascii.case", "RectGrid_ascii.geo"),
     ] {
-        let bytes = std::fs::read(data(file)).unwrap();
+        let bytes = std::fs::read(ensight(file)).unwrap();
         let want = at_step(&dir.join(case), None);
         for len in 0..bytes.len() {
             std::fs::write(dir.join(file), &bytes[..len]).unwrap();
@@ -286,17 +262,17 @@ fn every_truncation_is_an_error_or_the_same_mesh() {
 /// flipped bit): an error or a read, never a panic.
 #[test]
 fn every_corrupted_byte_is_an_error_or_a_read() {
-    let dir = scratch("corrupt");
+    let dir = scratch("ensight", "corrupt");
     for name in [
         "LShape.case",
         "LShape_geometry.geo",
         "LShape_displacement.var",
     ] {
-        std::fs::copy(data(name), dir.join(name)).unwrap();
+        std::fs::copy(ensight(name), dir.join(name)).unwrap();
     }
     let case = dir.join("LShape.case");
     for file in ["LShape_geometry.geo", "LShape_displacement.var"] {
-        let bytes = std::fs::read(data(file)).unwrap();
+        let bytes = std::fs::read(ensight(file)).unwrap();
         let mut copy = bytes.clone();
         for at in 0..bytes.len() {
             for value in [0x00, 0xff, bytes[at] ^ 0x01] {

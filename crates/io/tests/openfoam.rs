@@ -2,42 +2,13 @@
 //! OpenFOAM wrote it) and on small cases written by these tests in ASCII
 //! and binary, 32- and 64-bit labels, compressed or not.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use tetray_io::{LoadOptions, LoadedMesh, load};
 
-fn data(path: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../data")
-        .join(path)
-}
+mod formats_common;
 
-fn scratch(name: &str) -> PathBuf {
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
-        .join("openfoam")
-        .join(name);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("scratch folder");
-    dir
-}
-
-fn at_step(path: &Path, time_step: Option<usize>) -> LoadedMesh {
-    let opts = LoadOptions {
-        time_step,
-        ..LoadOptions::default()
-    };
-    load(path, &opts).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
-}
-
-fn field<'a>(mesh: &'a LoadedMesh, name: &str) -> &'a [f32] {
-    &mesh
-        .mesh
-        .fields
-        .iter()
-        .find(|f| f.name == name)
-        .expect(name)
-        .values
-}
+use formats_common::{at_step, data, field, scratch};
 
 /// The cavity: 882 points and 400 hexahedra, as VTK's vtkOpenFOAMReader
 /// and the `owner` file's note ("nPoints: 882 nCells: 400") count them;
@@ -290,7 +261,7 @@ fn every_encoding_reads_the_same_cells_and_fields() {
         },
     ];
     for (i, style) in styles.into_iter().enumerate() {
-        let dir = scratch(&format!("encoding{i}"));
+        let dir = scratch("openfoam", &format!("encoding{i}"));
         write_case(&dir, style);
         let first = at_step(&dir, None);
         assert_eq!(first.report.times, vec![0.0, 1.0], "case {i}");
@@ -339,7 +310,7 @@ fn every_truncation_is_an_error_or_the_same_mesh() {
         scalar32: false,
         gzip_points: false,
     };
-    let whole = scratch("whole");
+    let whole = scratch("openfoam", "whole");
     write_case(&whole, style);
     let want = at_step(&whole, Some(1));
     for file in [
@@ -350,7 +321,7 @@ fn every_truncation_is_an_error_or_the_same_mesh() {
         "1/U",
     ] {
         let bytes = std::fs::read(whole.join(file)).unwrap();
-        let dir = scratch("cut");
+        let dir = scratch("openfoam", "cut");
         write_case(&dir, style);
         for len in 0..bytes.len() {
             std::fs::write(dir.join(file), &bytes[..len]).unwrap();
@@ -381,9 +352,9 @@ fn a_decomposed_case_is_welded() {
         scalar32: false,
         gzip_points: false,
     };
-    let whole = scratch("reconstructed");
+    let whole = scratch("openfoam", "reconstructed");
     write_case(&whole, style);
-    let dir = scratch("decomposed");
+    let dir = scratch("openfoam", "decomposed");
     std::fs::create_dir_all(dir.join("system")).unwrap();
     std::fs::write(dir.join("system/controlDict"), header(style, "dictionary")).unwrap();
     let (points, _, _, _) = hex_and_pyramid();
@@ -456,7 +427,7 @@ fn every_corrupted_byte_is_an_error_or_a_read() {
         scalar32: false,
         gzip_points: false,
     };
-    let dir = scratch("corrupt");
+    let dir = scratch("openfoam", "corrupt");
     write_case(&dir, style);
     let opts = LoadOptions {
         time_step: Some(1),
@@ -497,7 +468,7 @@ fn macro_values_are_read_or_named() {
         scalar32: false,
         gzip_points: false,
     };
-    let dir = scratch("macros");
+    let dir = scratch("openfoam", "macros");
     write_case(&dir, style);
     let mut u = header(style, "volVectorField");
     u.extend(b"flowVelocity (1 2 2);\ninternalField   uniform $flowVelocity;\n");
