@@ -9,7 +9,7 @@ use tetray_io::{LoadOptions, LoadedMesh, load};
 
 mod formats_common;
 
-use formats_common::{at_step, data, field};
+use formats_common::{at_step, data, field, volume};
 
 fn loaded(path: &str) -> LoadedMesh {
     at_step(&data(path), None)
@@ -80,15 +80,7 @@ fn an_unstructured_zone_reads_every_section() {
     let m = loaded("cgns/unstructured.cgns");
     assert_eq!(m.mesh.points.len(), 14);
     let origin = m.origin();
-    let volume: f64 = m
-        .mesh
-        .tets
-        .iter()
-        .map(|t| {
-            let [a, b, c, d] = t.map(|i| m.mesh.points[i as usize].as_dvec3() + origin);
-            (b - a).cross(c - a).dot(d - a).abs() / 6.0
-        })
-        .sum();
+    let volume = volume(&m);
     assert!(
         (volume - (2.0 + 1.0 / 6.0 + 1.0 / 12.0)).abs() < 1e-6,
         "{volume}"
@@ -118,15 +110,7 @@ fn an_unstructured_zone_reads_every_section() {
 fn ngon_and_nface_sections_read_as_polyhedra() {
     let m = loaded("cgns/polyhedral.cgns");
     let origin = m.origin().as_vec3();
-    let volume: f64 = m
-        .mesh
-        .tets
-        .iter()
-        .map(|t| {
-            let [a, b, c, d] = t.map(|i| (m.mesh.points[i as usize] + origin).as_dvec3());
-            (b - a).cross(c - a).dot(d - a).abs() / 6.0
-        })
-        .sum();
+    let volume = volume(&m);
     assert!((volume - 7.0 / 6.0).abs() < 1e-6, "{volume}");
     assert_eq!(m.report.cells_split, 2);
     let (f, cell) = (field(&m, "f"), field(&m, "cell"));

@@ -8,7 +8,7 @@ use tetray_io::{LoadOptions, LoadedMesh, load};
 
 mod formats_common;
 
-use formats_common::{at_step, data, field, scratch};
+use formats_common::{at_step, data, field, scratch, volume};
 
 /// The cavity: 882 points and 400 hexahedra, as VTK's vtkOpenFOAMReader
 /// and the `owner` file's note ("nPoints: 882 nCells: 400") count them;
@@ -220,18 +220,6 @@ fn write_mesh_and_fields(dir: &Path, style: Style, mesh: PolyMesh, p1: &[f64], u
         std::fs::write(folder.join("U"), bytes).unwrap();
         std::fs::write(folder.join("phi"), header(style, "surfaceScalarField")).unwrap();
     }
-}
-
-fn volume(mesh: &LoadedMesh) -> f64 {
-    let origin = mesh.origin();
-    mesh.mesh
-        .tets
-        .iter()
-        .map(|t| {
-            let [a, b, c, d] = t.map(|i| mesh.mesh.points[i as usize].as_dvec3() + origin);
-            (b - a).cross(c - a).dot(d - a).abs() / 6.0
-        })
-        .sum()
 }
 
 /// The same two cells in every encoding: a hexahedron and a pyramid

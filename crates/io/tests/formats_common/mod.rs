@@ -43,3 +43,17 @@ pub fn field<'a>(mesh: &'a LoadedMesh, name: &str) -> &'a [f32] {
         .expect(name)
         .values
 }
+
+/// The mesh's volume: the sum of its tetrahedra's, in f64 in the file's
+/// coordinates.
+pub fn volume(mesh: &LoadedMesh) -> f64 {
+    let origin = mesh.origin();
+    mesh.mesh
+        .tets
+        .iter()
+        .map(|t| {
+            let [a, b, c, d] = t.map(|i| mesh.mesh.points[i as usize].as_dvec3() + origin);
+            (b - a).cross(c - a).dot(d - a).abs() / 6.0
+        })
+        .sum()
+}
