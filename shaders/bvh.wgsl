@@ -25,7 +25,7 @@ fn make_slab(ray: Ray) -> Slab {
     slab.origin_minus_pad = o - vec3<f32>(pad);
     let inv = vec3<f32>(1.0) / ray.dir;
     // Not finite: |inv| above the largest f32 (or NaN).
-    let finite = abs(inv) <= vec3<f32>(3.4028235e38);
+    let finite = abs(inv) <= vec3<f32>(3.40282346e38);
     slab.parallel = select(vec3<u32>(1u), vec3<u32>(0u), finite);
     slab.inv_dir = select(vec3<f32>(0.0), inv, finite);
     return slab;

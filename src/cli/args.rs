@@ -304,6 +304,19 @@ pub struct WalkArgs {
     pub no_adaptive_tf: bool,
 }
 
+impl WalkArgs {
+    /// Every flag at its default.
+    pub fn defaults() -> Self {
+        use clap::Parser;
+        #[derive(Parser)]
+        struct Wrapper {
+            #[command(flatten)]
+            args: WalkArgs,
+        }
+        Wrapper::parse_from(["tetray"]).args
+    }
+}
+
 impl From<RendererArg> for tetray_engine::RendererChoice {
     fn from(arg: RendererArg) -> Self {
         match arg {

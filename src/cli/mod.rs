@@ -7,6 +7,7 @@ mod compare;
 mod datasets;
 #[cfg(feature = "mpi")]
 mod distributed;
+mod export_html;
 mod generate;
 mod generate_grid;
 mod info;
@@ -64,6 +65,9 @@ pub enum Command {
     /// Write a large test mesh (a refined PLOT3D dataset or a procedural
     /// nonconvex solid) at a requested tetrahedron count; print JSON.
     Generate(generate::GenerateArgs),
+    /// Write a web page that renders the mesh in the browser on the
+    /// visitor's GPU (WebGPU), with the ray caster's own kernel and buffers.
+    ExportHtml(Box<export_html::ExportHtmlArgs>),
 }
 
 /// Runs the parsed command line.
@@ -93,6 +97,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Some(Command::Study(args)) => study::run(&args),
         Some(Command::Compare(args)) => compare::run(&args),
         Some(Command::Generate(args)) => generate::run(&args),
+        Some(Command::ExportHtml(args)) => export_html::run(&args),
     }
 }
 

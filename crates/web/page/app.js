@@ -1,0 +1,229 @@
+// The page: loads the scene, renders on demand, turns mouse and controls
+// into the camera and integrator, shows the stats line, runs the
+// benchmark, and exposes `window.tetray` (render and read back the float
+// image, for tests and scripts).
+
+const ui = {
+  canvas: document.getElementById("view"),
+  status: document.getElementById("status"),
+  stats: document.getElementById("stats"),
+  method: document.getElementById("method"),
+  colormap: document.getElementById("colormap"),
+  opacity: document.getElementById("opacity"),
+  opacityValue: document.getElementById("opacity-value"),
+  reset: document.getElementById("reset"),
+  bench: document.getElementById("bench"),
+};
+
+function showError(message) {
+  ui.status.textContent = message;
+  ui.status.className = "error";
+}
+
+function base64Of(bytes) {
+  let text = "";
+  for (let i = 0; i < bytes.length; i += 0x8000) {
+    text += String.fromCharCode.apply(null, bytes.subarray(i, i + 0x8000));
+  }
+  return btoa(text);
+}
+
+// Premultiplied RGBA floats over the background, to 8 bits.
+function draw(pixels, width, height, background) {
+  const canvas = ui.canvas;
+  if (canvas.width !== width || canvas.height !== height) { canvas.width = width; canvas.height = height; }
+  const context = canvas.getContext("2d");
+  const out = context.createImageData(width, height);
+  for (let i = 0; i < width * height; i++) {
+    const a = pixels[4 * i + 3];
+    for (let c = 0; c < 3; c++) {
+      const v = pixels[4 * i + c] + (1 - a) * background[c];
+      out.data[4 * i + c] = Math.round(Math.min(Math.max(v, 0), 1) * 255);
+    }
+    out.data[4 * i + 3] = 255;
+  }
+  context.putImageData(out, 0, 0);
+}
+
+function statsLine(frame, adapter) {
+  const c = frame.counters;
+  const rate = frame.ms > 0 ? c.segments / (frame.ms / 1000) / 1e6 : 0;
+  let line = `${frame.ms.toFixed(1)} ms per frame · ${rate.toFixed(2)} M segments/s · ` +
+    `${c.segments} segments, ${c.rays_hit} of ${c.rays} rays hit · ${adapter}`;
+  if (c.steps_bound_hits > 0) line += ` · ${c.steps_bound_hits} rays stopped at the step bound`;
+  if (c.walk_failures > 0) line += ` · ${c.walk_failures} walk failures`;
+  return line;
+}
+
+async function main() {
+  const manifest = JSON.parse(document.getElementById("tetray-manifest").textContent);
+  const wgsl = document.getElementById("tetray-wgsl").textContent;
+  document.title = `${manifest.name} · tetray`;
+  ui.status.textContent = `${manifest.name}: ${manifest.tet_count} tetrahedra, ${manifest.field}; loading`;
+  const gpu = await openGpu();
+  const buffers = await loadBuffers(manifest);
+  const caster = new Raycaster(gpu, wgsl, manifest, buffers);
+  const errors = await caster.compileErrors();
+  if (errors) throw new PageError(errors);
+  gpu.device.lost.then((info) => showError(`the GPU device was lost: ${info.message || info.reason}`));
+
+  const methods = new Map(manifest.methods.map((m) => [m.name, m]));
+  const state = {
+    camera: cameraCopy(manifest.camera),
+    method: manifest.method,
+    colormap: manifest.colormaps[0].name,
+    scale: 1,
+  };
+  const size = () => [manifest.size[0], manifest.size[1]];
+  const integratorOf = (colormap, method) => {
+    const map = manifest.colormaps.find((c) => c.name === colormap);
+    if (!map) throw new PageError(`no colour map "${colormap}"`);
+    const spec = map.integrators[method];
+    if (!spec) throw new PageError(`the ${method} integrator has no tables for colour map "${colormap}"`);
+    if (!methods.has(method)) throw new PageError(`no GPU method "${method}"`);
+    return [spec, methods.get(method)];
+  };
+
+  for (const m of manifest.methods) ui.method.add(new Option(m.name, m.name));
+  for (const c of manifest.colormaps) ui.colormap.add(new Option(c.name, c.name));
+  ui.method.value = state.method;
+  const offer = () => {
+    const map = manifest.colormaps.find((c) => c.name === state.colormap);
+    for (const option of ui.method.options) option.disabled = !(option.value in map.integrators);
+  };
+  offer();
+
+  // One frame at a time; a change during a frame renders once more after.
+  let busy = false, again = false;
+  async function redraw() {
+    if (busy) { again = true; return; }
+    busy = true;
+    try {
+      do {
+        again = false;
+        const [width, height] = size();
+        const [spec, method] = integratorOf(state.colormap, state.method);
+        const frame = await caster.render(state.camera, width, height, spec, method, state.scale);
+        draw(frame.pixels, width, height, manifest.background);
+        ui.stats.textContent = statsLine(frame, gpu.name);
+      } while (again);
+      ui.status.textContent = `${manifest.name}: ${manifest.tet_count} tetrahedra, ${manifest.field} in ` +
+        `[${manifest.range[0]}, ${manifest.range[1]}] · drag: orbit · shift/right drag: pan · wheel: dolly`;
+      ui.status.className = "";
+    } catch (e) {
+      showError(String(e.message || e));
+    } finally {
+      busy = false;
+    }
+  }
+
+  ui.method.onchange = () => { state.method = ui.method.value; redraw(); };
+  ui.colormap.onchange = () => {
+    state.colormap = ui.colormap.value;
+    offer();
+    if (!(state.method in manifest.colormaps.find((c) => c.name === state.colormap).integrators)) {
+      state.method = manifest.method;
+      ui.method.value = state.method;
+    }
+    redraw();
+  };
+  ui.opacity.oninput = () => {
+    state.scale = Math.fround(Math.pow(10, Number(ui.opacity.value)));
+    ui.opacityValue.textContent = `${state.scale.toPrecision(3)}x`;
+    redraw();
+  };
+  ui.reset.onclick = () => { state.camera = cameraCopy(manifest.camera); redraw(); };
+
+  let drag = null;
+  ui.canvas.addEventListener("contextmenu", (e) => e.preventDefault());
+  ui.canvas.addEventListener("pointerdown", (e) => {
+    drag = { x: e.clientX, y: e.clientY, pan: e.button !== 0 || e.shiftKey };
+    ui.canvas.setPointerCapture(e.pointerId);
+  });
+  ui.canvas.addEventListener("pointerup", () => { drag = null; });
+  ui.canvas.addEventListener("pointermove", (e) => {
+    if (!drag) return;
+    const rect = ui.canvas.getBoundingClientRect();
+    const dx = e.clientX - drag.x, dy = e.clientY - drag.y;
+    drag.x = e.clientX; drag.y = e.clientY;
+    try {
+      if (drag.pan) cameraPan(state.camera, dx, dy, rect.height);
+      else cameraOrbit(state.camera, dx, dy, rect.width, rect.height);
+      redraw();
+    } catch (err) { showError(String(err.message || err)); }
+  });
+  ui.canvas.addEventListener("wheel", (e) => {
+    e.preventDefault();
+    try { cameraDolly(state.camera, -Math.sign(e.deltaY)); redraw(); } catch (err) { showError(String(err.message || err)); }
+  }, { passive: false });
+
+  // The benchmark: `views` azimuths evenly round the start camera, `frames`
+  // frames each; segments/s and frames/s over all of them.
+  async function bench(frames, views) {
+    const [width, height] = size();
+    const [spec, method] = integratorOf(state.colormap, state.method);
+    let ms = 0, segments = 0, count = 0;
+    for (let v = 0; v < views; v++) {
+      const camera = cameraCopy(manifest.camera);
+      cameraAzimuth(camera, (360 * v) / views);
+      for (let f = 0; f < frames; f++) {
+        const frame = await caster.render(camera, width, height, spec, method, state.scale);
+        ms += frame.ms; segments += frame.counters.segments; count++;
+        if (f === frames - 1) draw(frame.pixels, width, height, manifest.background);
+      }
+    }
+    const result = {
+      adapter: gpu.name, method: state.method, width, height, frames: count,
+      segments_per_second: segments / (ms / 1000), frames_per_second: count / (ms / 1000),
+    };
+    ui.stats.textContent = `bench: ${(result.segments_per_second / 1e6).toFixed(2)} M segments/s, ` +
+      `${result.frames_per_second.toFixed(2)} frames/s (${count} frames of ${width}x${height}, ` +
+      `${views} views, ${state.method}) · ${gpu.name}`;
+    return result;
+  }
+  ui.bench.onclick = () => bench(manifest.bench ? manifest.bench.frames : 5, manifest.bench ? manifest.bench.views : 8)
+    .catch((e) => showError(String(e.message || e)));
+
+  window.tetray = {
+    manifest,
+    adapter: gpu.name,
+    // Renders one frame without showing it: `camera` (default: the page's
+    // start), then `azimuth` and `elevation` as `tetray render` applies
+    // them; the float image comes back as base64 of little-endian f32
+    // RGBA, rows from the top.
+    async render(options = {}) {
+      // A camera in the file's coordinates, as `tetray render` takes it.
+      const given = options.camera && {
+        ...options.camera,
+        position: sub3(options.camera.position, manifest.origin),
+        focal_point: sub3(options.camera.focal_point, manifest.origin),
+      };
+      const camera = cameraCopy(given || manifest.camera);
+      if (given) {
+        cameraBasis(camera);
+        cameraAzimuth(camera, options.azimuth || 0);
+        cameraElevation(camera, options.elevation || 0);
+        cameraOrthogonalize(camera);
+      }
+      const width = options.width || manifest.size[0];
+      const height = options.height || manifest.size[1];
+      const [spec, method] = integratorOf(options.colormap || manifest.colormaps[0].name,
+        options.method || manifest.method);
+      const frame = await caster.render(camera, width, height, spec, method, options.opacity_scale || 1);
+      return { width, height, adapter: gpu.name, counters: frame.counters, ms: frame.ms,
+        pixels: base64Of(new Uint8Array(frame.pixels.buffer)) };
+    },
+    bench,
+  };
+  const first = performance.now();
+  await redraw();
+  window.tetray.firstFrameMs = performance.now() - first;
+  if (manifest.bench) {
+    window.tetray.benchResult = await bench(manifest.bench.frames, manifest.bench.views);
+  }
+}
+
+window.tetrayReady = main().then(
+  () => ({ ok: true, adapter: window.tetray.adapter }),
+  (e) => { showError(String(e.message || e)); return { ok: false, error: String(e.message || e) }; },
+);

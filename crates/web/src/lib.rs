@@ -1,0 +1,65 @@
+//! `tetray export-html`: a scene as one web page that renders it on the
+//! visitor's GPU through WebGPU, with the same WGSL kernel and the same
+//! buffers as the wgpu ray caster (`tetray render --renderer gpu`).
+//!
+//! - [`bundle()`]: the scene's buffers as uploaded, an integrator per colour
+//!   map and GPU method, and the manifest the page reads;
+//! - [`page()`]: the HTML (one file, or `index.html` and `scene.js`);
+//! - `page/`: the page's script (plain JavaScript, no build step): the VTK
+//!   camera in the CLI's arithmetic, the buffers' decoding, the WebGPU host
+//!   of the kernel, and the controls, stats, benchmark and test hook.
+//!
+//! What a page can hold: the tetrahedra and the points may each be split
+//! over two storage bindings, as the native upload does, so a page needs an
+//! adapter whose `maxStorageBufferBindingSize` is at least half the larger
+//! array ([`Limits`]); WebGPU guarantees 128 MiB (4.2 M tetrahedra per
+//! binding, 8.4 M in all). Each buffer's text must fit in one browser
+//! string ([`page::MAX_BUFFER_TEXT`]).
+
+pub mod bundle;
+mod colormaps;
+pub mod page;
+
+pub use bundle::{Bundle, Manifest, PageOptions, bundle};
+pub use colormaps::EXPORTED;
+pub use page::{Layout, PageFiles, page};
+
+/// What went wrong making a page.
+#[derive(Debug, thiserror::Error)]
+pub enum WebError {
+    #[error("{0}")]
+    Setup(String),
+    #[error("colour map {0}")]
+    Colormap(String),
+    #[error("the page cannot hold this scene: {0}")]
+    TooLarge(String),
+}
+
+/// WebGPU's guaranteed `maxStorageBufferBindingSize` (128 MiB): a page
+/// whose arrays fit in two such bindings each opens on every adapter.
+pub const GUARANTEED_BINDING: u64 = 128 << 20;
+
+/// The binding size a page's adapter needs, from its arrays.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Limits {
+    /// The smallest `maxStorageBufferBindingSize` that holds every array
+    /// (tetrahedra and points in two bindings each, the BVH in one).
+    pub binding_bytes: u64,
+}
+
+impl Limits {
+    pub fn of(manifest: &Manifest) -> Limits {
+        let half = |bytes: usize, element: u64| (bytes as u64 / element).div_ceil(2) * element;
+        let tets = half(manifest.buffers.get("tets").copied().unwrap_or(0), 32);
+        let points = half(manifest.buffers.get("points").copied().unwrap_or(0), 16);
+        let bvh = manifest.buffers.get("bvh").copied().unwrap_or(0) as u64;
+        Limits {
+            binding_bytes: tets.max(points).max(bvh),
+        }
+    }
+
+    /// Whether every WebGPU adapter can open the page.
+    pub fn guaranteed(&self) -> bool {
+        self.binding_bytes <= GUARANTEED_BINDING
+    }
+}
