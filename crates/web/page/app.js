@@ -28,12 +28,13 @@ function base64Of(bytes) {
   return btoa(text);
 }
 
-// Premultiplied RGBA floats over the background, to 8 bits.
+// Premultiplied RGBA floats over the background, to 8 bits, drawn over
+// the whole view (a preview frame of fewer pixels is scaled up).
 function draw(pixels, width, height, background) {
-  const canvas = ui.canvas;
-  if (canvas.width !== width || canvas.height !== height) { canvas.width = width; canvas.height = height; }
-  const context = canvas.getContext("2d");
-  const out = context.createImageData(width, height);
+  const scratch = draw.scratch || (draw.scratch = document.createElement("canvas"));
+  scratch.width = width;
+  scratch.height = height;
+  const out = new ImageData(width, height);
   for (let i = 0; i < width * height; i++) {
     const a = pixels[4 * i + 3];
     for (let c = 0; c < 3; c++) {
@@ -42,7 +43,10 @@ function draw(pixels, width, height, background) {
     }
     out.data[4 * i + 3] = 255;
   }
-  context.putImageData(out, 0, 0);
+  scratch.getContext("2d").putImageData(out, 0, 0);
+  const view = ui.canvas.getContext("2d");
+  view.imageSmoothingEnabled = true;
+  view.drawImage(scratch, 0, 0, ui.canvas.width, ui.canvas.height);
 }
 
 function statsLine(frame, adapter) {
@@ -60,11 +64,16 @@ async function main() {
   const wgsl = document.getElementById("tetray-wgsl").textContent;
   document.title = `${manifest.name} · tetray`;
   ui.status.textContent = `${manifest.name}: ${manifest.tet_count} tetrahedra, ${manifest.field}; loading`;
+  // Milliseconds from navigation to each stage of the start.
+  const timings = { script: performance.now() };
   const gpu = await openGpu();
+  timings.adapter = performance.now();
   const buffers = await loadBuffers(manifest);
+  timings.buffers = performance.now();
   const caster = new Raycaster(gpu, wgsl, manifest, buffers);
   const errors = await caster.compileErrors();
   if (errors) throw new PageError(errors);
+  timings.kernel = performance.now();
   gpu.device.lost.then((info) => showError(`the GPU device was lost: ${info.message || info.reason}`));
 
   const methods = new Map(manifest.methods.map((m) => [m.name, m]));
@@ -94,19 +103,30 @@ async function main() {
   offer();
 
   // One frame at a time; a change during a frame renders once more after.
-  let busy = false, again = false;
+  // Each change shows a preview of a sixteenth of the pixels first (when
+  // the view is large), then the full frame.
+  const [fullWidth, fullHeight] = size();
+  const preview = fullWidth * fullHeight >= 256 * 256 ? 4 : 1;
+  let busy = false, again = false, firstFrame = null, shown;
+  const firstShown = new Promise((resolve) => { shown = resolve; });
   async function redraw() {
     if (busy) { again = true; return; }
     busy = true;
     try {
-      do {
+      let factor = preview;
+      for (;;) {
         again = false;
-        const [width, height] = size();
+        const width = Math.max(1, Math.round(fullWidth / factor));
+        const height = Math.max(1, Math.round(fullHeight / factor));
         const [spec, method] = integratorOf(state.colormap, state.method);
         const frame = await caster.render(state.camera, width, height, spec, method, state.scale);
         draw(frame.pixels, width, height, manifest.background);
-        ui.stats.textContent = statsLine(frame, gpu.name);
-      } while (again);
+        if (firstFrame === null) { firstFrame = performance.now(); shown(); }
+        ui.stats.textContent = (factor > 1 ? `preview ${width}x${height}: ` : "") + statsLine(frame, gpu.name);
+        if (again) { factor = preview; continue; }
+        if (factor > 1) { factor = 1; continue; }
+        break;
+      }
       ui.status.textContent = `${manifest.name}: ${manifest.tet_count} tetrahedra, ${manifest.field} in ` +
         `[${manifest.range[0]}, ${manifest.range[1]}] · drag: orbit · shift/right drag: pan · wheel: dolly`;
       ui.status.className = "";
@@ -186,6 +206,7 @@ async function main() {
 
   window.tetray = {
     manifest,
+    timings,
     adapter: gpu.name,
     // Renders one frame without showing it: `camera` (default: the page's
     // start), then `azimuth` and `elevation` as `tetray render` applies
@@ -215,12 +236,20 @@ async function main() {
     },
     bench,
   };
-  const first = performance.now();
-  await redraw();
-  window.tetray.firstFrameMs = performance.now() - first;
+  // The page is ready once its first frame shows (a preview, when the
+  // view is large); the full frame and the benchmark follow. Times are
+  // from the page's start (navigation).
+  const full = redraw();
+  window.tetray.fullFrame = full.then(() => performance.now());
   if (manifest.bench) {
-    window.tetray.benchResult = await bench(manifest.bench.frames, manifest.bench.views);
+    window.tetray.benchDone = full.then(() => bench(manifest.bench.frames, manifest.bench.views))
+      .then((result) => { window.tetray.benchResult = result; return result; });
   }
+  await Promise.race([firstShown, full.then(() => {
+    if (firstFrame === null) throw new PageError(ui.status.textContent);
+  })]);
+  window.tetray.firstFrameMs = firstFrame;
+  timings.first_frame = firstFrame;
 }
 
 window.tetrayReady = main().then(

@@ -179,30 +179,46 @@ class Raycaster {
     this.device.queue.writeBuffer(this.params, 0, words);
   }
 
+  // The image, counters and tiles of a frame size (the last two sizes
+  // are kept: the preview's and the full frame's).
   target(width, height) {
-    if (this.size && this.size[0] === width && this.size[1] === height) return;
+    const key = `${width}x${height}`;
+    this.targets = this.targets || new Map();
+    const kept = this.targets.get(key);
+    if (kept) return kept;
     const device = this.device;
-    this.size = [width, height];
-    this.image = device.createBuffer({ label: "image", size: width * height * 16,
+    const image = device.createBuffer({ label: "image", size: width * height * 16,
       usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC });
-    this.stats = device.createBuffer({ label: "stats", size: 4 * STAT_COUNT,
+    const stats = device.createBuffer({ label: "stats", size: 4 * STAT_COUNT,
       usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC | GPUBufferUsage.COPY_DST });
-    this.tiles = [];
+    const tiles = [];
     for (let y0 = 0; y0 < height; y0 += TILE) {
       for (let x0 = 0; x0 < width; x0 += TILE) {
-        this.tiles.push([x0, y0, Math.min(TILE, width - x0), Math.min(TILE, height - y0)]);
+        tiles.push([x0, y0, Math.min(TILE, width - x0), Math.min(TILE, height - y0)]);
       }
     }
-    const tileBytes = new Uint8Array(this.tiles.length * this.stride);
-    this.tiles.forEach((t, i) => tileBytes.set(new Uint8Array(new Uint32Array(t).buffer), i * this.stride));
-    this.tileBuffer = storage(device, "tiles", tileBytes);
+    const tileBytes = new Uint8Array(tiles.length * this.stride);
+    tiles.forEach((t, i) => tileBytes.set(new Uint8Array(new Uint32Array(t).buffer), i * this.stride));
+    const target = { image, stats, tiles, tileBuffer: storage(device, "tiles", tileBytes) };
+    if (this.targets.size >= 2) this.targets.clear();
+    this.targets.set(key, target);
+    return target;
+  }
+
+  // Renders a frame once the frames asked for before it are done (they
+  // share the parameter buffer and the targets).
+  render(camera, width, height, spec, method, scale) {
+    const next = (this.last || Promise.resolve()).catch(() => {})
+      .then(() => this.renderNow(camera, width, height, spec, method, scale));
+    this.last = next;
+    return next;
   }
 
   // Renders a frame; resolves to the premultiplied RGBA floats, the
   // counters and the milliseconds from submission to completion.
-  async render(camera, width, height, spec, method, scale) {
+  async renderNow(camera, width, height, spec, method, scale) {
     const device = this.device;
-    this.target(width, height);
+    const target = this.target(width, height);
     const view = viewParams(camera, width, height, this.manifest.bounds);
     this.writeParams(view, width, height, spec, method, scale);
     const group = device.createBindGroup({
@@ -210,7 +226,7 @@ class Raycaster {
       layout: this.layout,
       entries: [
         { binding: 0, resource: { buffer: this.params } },
-        { binding: 1, resource: { buffer: this.tileBuffer, offset: 0, size: 16 } },
+        { binding: 1, resource: { buffer: target.tileBuffer, offset: 0, size: 16 } },
         { binding: 2, resource: { buffer: this.points.buffers[0] } },
         { binding: 3, resource: { buffer: this.points.buffers[1] } },
         { binding: 4, resource: { buffer: this.tets.buffers[0] } },
@@ -218,16 +234,16 @@ class Raycaster {
         { binding: 6, resource: { buffer: this.bvh } },
         { binding: 7, resource: { buffer: this.tablesFor(spec, method, scale) } },
         { binding: 8, resource: this.psiView(spec) },
-        { binding: 9, resource: { buffer: this.image } },
-        { binding: 10, resource: { buffer: this.stats } },
+        { binding: 9, resource: { buffer: target.image } },
+        { binding: 10, resource: { buffer: target.stats } },
       ],
     });
     device.pushErrorScope("validation");
     const encoder = device.createCommandEncoder();
-    encoder.clearBuffer(this.stats);
+    encoder.clearBuffer(target.stats);
     const pass = encoder.beginComputePass({ label: "raycast" });
     pass.setPipeline(this.pipeline);
-    this.tiles.forEach((t, i) => {
+    target.tiles.forEach((t, i) => {
       pass.setBindGroup(0, group, [i * this.stride]);
       pass.dispatchWorkgroups(Math.ceil(t[2] / WORKGROUP), Math.ceil(t[3] / WORKGROUP), 1);
     });
@@ -239,8 +255,8 @@ class Raycaster {
     const imageRead = device.createBuffer({ size: width * height * 16, usage: GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST });
     const statsRead = device.createBuffer({ size: 4 * STAT_COUNT, usage: GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST });
     const copy = device.createCommandEncoder();
-    copy.copyBufferToBuffer(this.image, 0, imageRead, 0, width * height * 16);
-    copy.copyBufferToBuffer(this.stats, 0, statsRead, 0, 4 * STAT_COUNT);
+    copy.copyBufferToBuffer(target.image, 0, imageRead, 0, width * height * 16);
+    copy.copyBufferToBuffer(target.stats, 0, statsRead, 0, 4 * STAT_COUNT);
     device.queue.submit([copy.finish()]);
     const error = await device.popErrorScope();
     if (error) throw new PageError("WebGPU: " + error.message);
