@@ -431,6 +431,41 @@ impl Scene {
         Ok((rows, reference, images))
     }
 
+    /// `tetray export-html` of the scene at its camera and size: the HTML
+    /// (one file, or `index.html` with `folder`) and, for a folder, the
+    /// text of its `scene.js`.
+    #[pyo3(signature = (background, bench=None, folder=false))]
+    fn to_html(
+        &self,
+        py: Python<'_>,
+        background: [f32; 3],
+        bench: Option<(u32, u32)>,
+        folder: bool,
+    ) -> PyResult<(String, Option<String>)> {
+        py.detach(|| {
+            guard(|| {
+                let setup = self.setup.read().expect("setup lock");
+                let options = tetray_web::PageOptions {
+                    size: self.size,
+                    background,
+                    early_termination: self.walk.early_termination,
+                    max_steps: self.walk.max_steps,
+                    bench,
+                    preintegrate_all: false,
+                };
+                let layout = if folder {
+                    tetray_web::Layout::Folder
+                } else {
+                    tetray_web::Layout::SingleFile
+                };
+                let page = tetray_web::bundle(&setup, &options)
+                    .and_then(|bundle| tetray_web::page(&bundle, layout))
+                    .map_err(|e| value_error(e.to_string()))?;
+                Ok((page.html, page.scene_js))
+            })
+        })
+    }
+
     /// The progress lines and warnings gathered so far, emptied.
     fn take_log(&self) -> (Vec<String>, Vec<String>) {
         let mut log = self.log.lock().expect("log lock");

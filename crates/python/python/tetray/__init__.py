@@ -13,14 +13,16 @@ from __future__ import annotations
 
 import json
 import os
+import pathlib
 import warnings
+from html import escape as html_escape
 from typing import Any, Dict, Iterator, List, Optional, Sequence, Tuple
 
 import numpy as np
 
 from . import _camera, _mesh, _native, _tf
 
-__all__ = ["render", "to_rgb8", "Scene", "compare", "segment", "psi", "mesh", "methods", "DEFAULT_VIEW"]
+__all__ = ["render", "to_rgb8", "Scene", "Page", "compare", "segment", "psi", "mesh", "methods", "DEFAULT_VIEW"]
 
 #: Azimuth and elevation (degrees) the CLI turns its ResetCamera fit by
 #: when no camera value at all is given.
@@ -207,6 +209,43 @@ class Scene:
         """The first view as the CLI's PNG, for notebooks to show."""
         return _native.png_bytes(self.render())
 
+    def to_html(
+        self,
+        path: Any = None,
+        *,
+        folder: bool = False,
+        background: Any = (1.0, 1.0, 1.0),
+        bench: Optional[Tuple[int, int]] = None,
+    ) -> Any:
+        """``tetray export-html``: a web page that renders the scene on the
+        visitor's GPU through WebGPU (the ray caster's own WGSL and
+        buffers), starting from the first view at the scene's size.
+
+        Without ``path``, returns the page as one HTML string. With one,
+        writes it there (``folder=True``: a folder holding ``index.html``
+        and ``scene.js``) and returns the HTML file's path. ``bench``:
+        ``(frames, views)`` the page benchmarks on opening."""
+        bg = [float(v) for v in _background(background).reshape(3)]
+        bench_pair = None if bench is None else (int(bench[0]), int(bench[1]))
+        html, scene_js = self._native.to_html(bg, bench_pair, bool(folder and path is not None))
+        self._warn()
+        if path is None:
+            return html
+        path = pathlib.Path(os.fspath(path))
+        if folder:
+            path.mkdir(parents=True, exist_ok=True)
+            (path / "index.html").write_text(html, encoding="utf-8")
+            (path / "scene.js").write_text(scene_js or "", encoding="utf-8")
+            return path / "index.html"
+        path.write_text(html, encoding="utf-8")
+        return path
+
+    def show(self, height: Optional[int] = None) -> "Page":
+        """The interactive page of ``to_html()`` for a notebook: Jupyter
+        shows the returned object as the page in a frame (the scene's own
+        ``_repr_png_`` stays the still image)."""
+        return Page(self.to_html(), height or self._size[1] + 160)
+
     def orbit(self, frames: int = 36, step: Optional[float] = None) -> List[np.ndarray]:
         """``frames`` views turning about the view-up from the first view
         by ``step`` degrees (default 360 / frames), as ``tetray bench``."""
@@ -233,6 +272,25 @@ class Scene:
     @property
     def size(self) -> Tuple[int, int]:
         return self._size
+
+
+class Page:
+    """A page of ``Scene.to_html()``, shown by Jupyter in a frame."""
+
+    def __init__(self, html: str, height: int) -> None:
+        self.html = html
+        self.height = int(height)
+
+    def _repr_html_(self) -> str:
+        return (
+            f'<iframe srcdoc="{html_escape(self.html, quote=True)}" '
+            f'style="width: 100%; height: {self.height}px; border: 0"></iframe>'
+        )
+
+    def save(self, path: Any) -> pathlib.Path:
+        path = pathlib.Path(os.fspath(path))
+        path.write_text(self.html, encoding="utf-8")
+        return path
 
 
 def render(
