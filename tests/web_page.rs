@@ -396,3 +396,68 @@ fn blunt_fin_page_is_small_and_shows_its_first_frame() {
     eprintln!("first frame shown {first} ms after navigation (SwiftShader); stages: {timings}");
     assert!(first.as_f64().is_some_and(|ms| ms > 0.0), "{first}");
 }
+
+#[test]
+fn mouse_and_controls_move_the_view_as_the_camera_flags_do() {
+    if !support::have_gpu() {
+        return;
+    }
+    let Some(browser) = Browser::start(&WEBGPU_FLAGS) else {
+        return;
+    };
+    let dir = scratch("web_page", "controls");
+    let out = run(
+        &dir,
+        &["generate", "solid", "--tets", "5k", "-o", "torus.vtu"],
+    );
+    assert!(out.status.success(), "generate: {}", text(&out.stderr));
+    export(&dir, &["torus.vtu", "-o", "page.html", "--size", "40x40"]);
+    open(&browser, &dir.join("page.html"));
+    // A drag a quarter of the view to the right orbits the camera 50
+    // degrees (200 per view, as the viewer), as --azimuth=-50 does.
+    let dragged = browser.eval(
+        r#"const canvas = document.getElementById("view");
+           const rect = canvas.getBoundingClientRect();
+           const at = (x) => ({ clientX: rect.left + x, clientY: rect.top + rect.height / 2,
+                                button: 0, pointerId: 1, bubbles: true });
+           canvas.dispatchEvent(new PointerEvent("pointerdown", at(10)));
+           canvas.dispatchEvent(new PointerEvent("pointermove", at(10 + rect.width / 4)));
+           canvas.dispatchEvent(new PointerEvent("pointerup", at(10 + rect.width / 4)));
+           const select = (id, value) => {
+             const element = document.getElementById(id);
+             element.value = value;
+             element.dispatchEvent(new Event(id === "opacity" ? "input" : "change"));
+           };
+           select("method", "exact");
+           select("colormap", "Viridis");
+           select("opacity", "0.3");
+           return await window.tetray.render({ current: true });"#,
+        json!(null),
+    );
+    let camera = browser.eval("return window.tetray.manifest.camera;", json!(null));
+    let turned = browser.eval(
+        "return await window.tetray.render({ camera: args, azimuth: -50, method: 'exact', \
+         colormap: 'Viridis', opacity_scale: Math.fround(Math.pow(10, 0.3)) });",
+        camera.clone(),
+    );
+    let still = browser.eval(
+        "return await window.tetray.render({ method: 'exact', colormap: 'Viridis' });",
+        json!(null),
+    );
+    assert_eq!(
+        dragged["pixels"], turned["pixels"],
+        "the drag is not --azimuth=-50"
+    );
+    assert_ne!(
+        dragged["pixels"], still["pixels"],
+        "the drag did not move the view"
+    );
+    let stats = browser.eval(
+        "return document.getElementById('stats').textContent;",
+        json!(null),
+    );
+    assert!(
+        stats.as_str().is_some_and(|s| s.contains("segments/s")),
+        "{stats}"
+    );
+}

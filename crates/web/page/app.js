@@ -158,7 +158,7 @@ async function main() {
   ui.canvas.addEventListener("contextmenu", (e) => e.preventDefault());
   ui.canvas.addEventListener("pointerdown", (e) => {
     drag = { x: e.clientX, y: e.clientY, pan: e.button !== 0 || e.shiftKey };
-    ui.canvas.setPointerCapture(e.pointerId);
+    try { ui.canvas.setPointerCapture(e.pointerId); } catch (_) { /* a synthetic pointer */ }
   });
   ui.canvas.addEventListener("pointerup", () => { drag = null; });
   ui.canvas.addEventListener("pointermove", (e) => {
@@ -209,7 +209,8 @@ async function main() {
     timings,
     adapter: gpu.name,
     // Renders one frame without showing it: `camera` (default: the page's
-    // start), then `azimuth` and `elevation` as `tetray render` applies
+    // start, or with `current` the view, integrator, colour map and
+    // opacity the controls have set), then `azimuth` and `elevation` as `tetray render` applies
     // them; the float image comes back as base64 of little-endian f32
     // RGBA, rows from the top.
     async render(options = {}) {
@@ -219,7 +220,7 @@ async function main() {
         position: sub3(options.camera.position, manifest.origin),
         focal_point: sub3(options.camera.focal_point, manifest.origin),
       };
-      const camera = cameraCopy(given || manifest.camera);
+      const camera = cameraCopy(given || (options.current ? state.camera : manifest.camera));
       if (given) {
         cameraBasis(camera);
         cameraAzimuth(camera, options.azimuth || 0);
@@ -228,9 +229,10 @@ async function main() {
       }
       const width = options.width || manifest.size[0];
       const height = options.height || manifest.size[1];
-      const [spec, method] = integratorOf(options.colormap || manifest.colormaps[0].name,
-        options.method || manifest.method);
-      const frame = await caster.render(camera, width, height, spec, method, options.opacity_scale || 1);
+      const now = options.current ? state : { colormap: manifest.colormaps[0].name, method: manifest.method, scale: 1 };
+      const [spec, method] = integratorOf(options.colormap || now.colormap, options.method || now.method);
+      const scale = options.opacity_scale || now.scale;
+      const frame = await caster.render(camera, width, height, spec, method, scale);
       return { width, height, adapter: gpu.name, counters: frame.counters, ms: frame.ms,
         pixels: base64Of(new Uint8Array(frame.pixels.buffer)) };
     },

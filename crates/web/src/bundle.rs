@@ -12,7 +12,7 @@
 use std::collections::{BTreeMap, HashMap};
 use std::io::Write;
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use tetray_core::{Camera, Method, Model};
 use tetray_engine::Setup;
 use tetray_gpu::{IntegratorData, SceneData};
@@ -38,7 +38,7 @@ pub struct Bundle {
 }
 
 /// What the page reads first; every name matches the page script's.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Manifest {
     pub name: String,
     pub field: String,
@@ -69,7 +69,7 @@ pub struct Manifest {
     pub bench: Option<BenchSpec>,
 }
 
-#[derive(Debug, Clone, Copy, Serialize)]
+#[derive(Debug, Clone, Copy, Serialize, Deserialize)]
 pub struct CameraSpec {
     pub position: [f32; 3],
     pub focal_point: [f32; 3],
@@ -90,16 +90,16 @@ impl From<&Camera> for CameraSpec {
     }
 }
 
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct MethodSpec {
     pub name: String,
     pub code: u32,
     /// "attenuation", "opacity" or "preintegrated": which parameter the
     /// page's opacity scale changes.
-    pub scale: &'static str,
+    pub scale: String,
 }
 
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct ColormapSpec {
     pub name: String,
     /// Method name -> its integrator (a method missing here is not offered
@@ -108,7 +108,7 @@ pub struct ColormapSpec {
 }
 
 /// WGSL `IntegratorParams` but for the tables, which are buffers.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct IntegratorSpec {
     pub method: u32,
     pub grey: bool,
@@ -122,7 +122,7 @@ pub struct IntegratorSpec {
     pub preint: Option<PreintSpec>,
 }
 
-#[derive(Debug, Clone, Copy, Serialize)]
+#[derive(Debug, Clone, Copy, Serialize, Deserialize)]
 pub struct PreintSpec {
     pub size: u32,
     pub offset: u32,
@@ -132,7 +132,7 @@ pub struct PreintSpec {
 }
 
 /// The page's benchmark: `frames` frames at each of `views` azimuths.
-#[derive(Debug, Clone, Copy, Serialize)]
+#[derive(Debug, Clone, Copy, Serialize, Deserialize)]
 pub struct BenchSpec {
     pub frames: u32,
     pub views: u32,
@@ -254,7 +254,8 @@ pub fn bundle(setup: &Setup, options: &PageOptions) -> Result<Bundle, WebError> 
                     (Method::Preintegrated, _) => "preintegrated",
                     (_, Model::LinearOpacity) => "opacity",
                     _ => "attenuation",
-                },
+                }
+                .to_string(),
             })
             .collect(),
         colormaps: maps,
@@ -317,4 +318,31 @@ fn deflate(bytes: &[u8]) -> Vec<u8> {
     // Writing to a Vec cannot fail.
     encoder.write_all(bytes).expect("deflate into memory");
     encoder.finish().expect("deflate into memory")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn byte_planes_hold_each_byte_of_each_word_in_its_plane() {
+        let words: [u32; 3] = [0x0403_0201, 0x1413_1211, 0x2423_2221];
+        let planes = byte_planes(bytemuck::cast_slice(&words));
+        assert_eq!(
+            planes,
+            [
+                0x01, 0x11, 0x21, 0x02, 0x12, 0x22, 0x03, 0x13, 0x23, 0x04, 0x14, 0x24
+            ]
+        );
+    }
+
+    #[test]
+    fn the_same_bytes_are_stored_once() {
+        let mut store = Store::default();
+        let a = store.add("a", &[1, 2, 3, 4]);
+        let b = store.add("b", &[1, 2, 3, 4]);
+        let c = store.add("c/d", &[5, 6, 7, 8]);
+        assert_eq!((a.as_str(), b.as_str(), c.as_str()), ("a", "a", "c_d"));
+        assert_eq!(store.buffers.len(), 2);
+    }
 }

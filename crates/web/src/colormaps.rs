@@ -23,7 +23,7 @@ pub fn colormaps(
 ) -> Result<Vec<(String, TransferFunction)>, WebError> {
     let (lo, hi) = range;
     let mut maps = vec![(EXPORTED.to_string(), exported.clone())];
-    if !(lo < hi) {
+    if lo.partial_cmp(&hi) != Some(std::cmp::Ordering::Less) {
         // A constant field: colour does not vary; one map is all there is.
         return Ok(maps);
     }

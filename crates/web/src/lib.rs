@@ -63,3 +63,45 @@ impl Limits {
         self.binding_bytes <= GUARANTEED_BINDING
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn manifest(tets: usize, points: usize, bvh: usize) -> Manifest {
+        let json = serde_json::json!({
+            "name": "m", "field": "f", "range": [0.0, 1.0], "unit_distance": 1.0,
+            "tet_count": tets, "point_count": points, "boundary_faces": 0,
+            "bounds": [[0.0, 0.0, 0.0], [1.0, 1.0, 1.0]], "scene_abs_max": 1.0,
+            "prim_offset": 0, "face_offset": 0, "origin": [0.0, 0.0, 0.0],
+            "camera": {"position": [0.0, 0.0, 1.0], "focal_point": [0.0, 0.0, 0.0],
+                       "view_up": [0.0, 1.0, 0.0], "view_angle": 30.0, "parallel_scale": null},
+            "size": [8, 8], "background": [1.0, 1.0, 1.0], "early_termination": 1.0,
+            "max_steps": 1, "method": "ppi", "methods": [], "colormaps": [], "bench": null,
+            "buffers": {"tets": tets * 32, "points": points * 16, "bvh": bvh},
+        });
+        serde_json::from_value(json).expect("a manifest")
+    }
+
+    #[test]
+    fn a_page_needs_half_its_larger_array_per_binding() {
+        // 8.4 M tetrahedra: two 128 MiB bindings hold them.
+        let fits = Limits::of(&manifest(
+            2 * (GUARANTEED_BINDING as usize / 32),
+            1000,
+            4096,
+        ));
+        assert_eq!(fits.binding_bytes, GUARANTEED_BINDING);
+        assert!(fits.guaranteed());
+        let more = Limits::of(&manifest(
+            2 * (GUARANTEED_BINDING as usize / 32) + 1,
+            1000,
+            4096,
+        ));
+        assert_eq!(more.binding_bytes, GUARANTEED_BINDING + 32);
+        assert!(!more.guaranteed());
+        // A BVH is never split.
+        let bvh = Limits::of(&manifest(10, 10, 200 << 20));
+        assert_eq!(bvh.binding_bytes, 200 << 20);
+    }
+}
