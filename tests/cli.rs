@@ -429,6 +429,23 @@ fn bad_inputs_fail_with_one_line() {
         (&["segment", "--lb", "1"], "--lf"),
         (&["psi", "--gamma-b", "2", "--gamma-f", "0"], "--gamma-b"),
         (&["bench", "--frames", "0"], "--frames"),
+        (&["export-html", "-o", "p.html", "--bench", "0"], "--bench"),
+        (
+            &["export-html", "-o", "p.html", "--bench", "2,3,4"],
+            "FRAMES[,VIEWS]",
+        ),
+        (
+            &["export-html", "-o", "p.html", "--early-termination", "2"],
+            "--early-termination",
+        ),
+        (
+            &["export-html", "-o", "p.html", "--max-steps", "0"],
+            "--max-steps",
+        ),
+        (
+            &["export-html", "-o", "no/such/folder/p.html"],
+            "no/such/folder/p.html",
+        ),
         (&["frobnicate"], "frobnicate"),
     ];
     for (args, named) in cases {
