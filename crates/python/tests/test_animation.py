@@ -6,6 +6,7 @@ one step turns the view."""
 
 from __future__ import annotations
 
+import base64
 import json
 
 import numpy as np
@@ -92,3 +93,19 @@ def test_animate_writes_what_the_cli_writes(tmp_path, tetray_bin):
 
     shown = np.asarray(Image.open(io.BytesIO(png)))
     assert np.array_equal(shown, tetray.to_rgb8(scene.render()))
+
+
+def test_animation_shows_inline_as_the_file_animate_writes(tmp_path):
+    series = write_series(tmp_path)
+    scene = tetray.Scene(series, size=SIZE, renderer="cpu", elevation=20.0)
+    shown = scene.animation(fps=5)
+    assert (shown.format, shown.frames, shown.size) == ("gif", 3, SIZE)
+    scene.animate(tmp_path / "file.gif", fps=5)
+    assert shown.data == (tmp_path / "file.gif").read_bytes()
+    html = shown._repr_html_()
+    assert html.startswith('<img src="data:image/gif;base64,')
+    encoded = html.split("base64,", 1)[1].split('"', 1)[0]
+    assert base64.b64decode(encoded) == shown.data
+    assert shown.save(tmp_path / "saved.gif").read_bytes() == shown.data
+    with pytest.raises(ValueError, match="format"):
+        scene.animation(format="avi")

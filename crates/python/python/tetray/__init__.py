@@ -11,9 +11,11 @@ many views. Defaults are the CLI's: the same call gives the same image as
 
 from __future__ import annotations
 
+import base64
 import json
 import os
 import pathlib
+import tempfile
 import warnings
 from html import escape as html_escape
 from typing import Any, Dict, Iterator, List, Optional, Sequence, Tuple
@@ -22,7 +24,7 @@ import numpy as np
 
 from . import _camera, _mesh, _native, _tf
 
-__all__ = ["render", "to_rgb8", "Scene", "Page", "compare", "segment", "psi", "mesh", "methods", "DEFAULT_VIEW"]
+__all__ = ["render", "to_rgb8", "Scene", "Page", "Animation", "compare", "segment", "psi", "mesh", "methods", "DEFAULT_VIEW"]
 
 #: Azimuth and elevation (degrees) the CLI turns its ResetCamera fit by
 #: when no camera value at all is given.
@@ -205,6 +207,26 @@ class Scene:
             writer.close()
         return writer.frames
 
+    def animation(
+        self,
+        times: Any = None,
+        orbit: Optional[float] = None,
+        n_frames: Optional[int] = None,
+        fps: int = 10,
+        background: Any = (0.0, 0.0, 0.0),
+        format: str = "gif",
+    ) -> "Animation":
+        """The frames of ``animate`` held in memory as an animated GIF
+        (``format="gif"``) or an MP4 (``"mp4"``, through ffmpeg), which a
+        notebook shows inline; ``save(path)`` writes the file."""
+        if format not in ("gif", "mp4"):
+            raise ValueError(f"format: expected 'gif' or 'mp4', got {format!r}")
+        with tempfile.TemporaryDirectory() as folder:
+            path = pathlib.Path(folder) / f"animation.{format}"
+            count = self.animate(path, times, orbit, n_frames, fps, background)
+            data = path.read_bytes()
+        return Animation(data, format, count, self._size)
+
     def _repr_png_(self) -> bytes:
         """The first view as the CLI's PNG, for notebooks to show."""
         return _native.png_bytes(self.render())
@@ -272,6 +294,32 @@ class Scene:
     @property
     def size(self) -> Tuple[int, int]:
         return self._size
+
+
+class Animation:
+    """Frames of ``Scene.animation()`` as one GIF or MP4 file's bytes;
+    Jupyter shows it inline."""
+
+    def __init__(self, data: bytes, format: str, frames: int, size: Tuple[int, int]) -> None:
+        self.data = data
+        self.format = format
+        self.frames = frames
+        self.size = size
+
+    def _repr_html_(self) -> str:
+        encoded = base64.b64encode(self.data).decode("ascii")
+        width, height = self.size
+        if self.format == "gif":
+            return f'<img src="data:image/gif;base64,{encoded}" width="{width}" height="{height}">'
+        return (
+            f'<video src="data:video/mp4;base64,{encoded}" width="{width}" height="{height}" '
+            "controls autoplay loop muted></video>"
+        )
+
+    def save(self, path: Any) -> pathlib.Path:
+        path = pathlib.Path(os.fspath(path))
+        path.write_bytes(self.data)
+        return path
 
 
 class Page:
