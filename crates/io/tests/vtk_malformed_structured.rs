@@ -461,3 +461,24 @@ fn garbled_parallel_and_multiblock_files_are_named_errors() {
     let e = read_multiblock_file(&path, None).unwrap_err().to_string();
     assert!(e.contains("nested more than 16 deep"), "{e}");
 }
+
+/// Found by the `vtk_legacy` fuzz target: DIMENSIONS of 0 made an extent
+/// that ends before it starts, and counting its points overflowed (a
+/// panic where overflow is checked). A zero dimension is a grid without
+/// points: a clear error at the load.
+#[test]
+fn a_zero_dimension_is_an_error_not_an_overflow() {
+    for dataset in [
+        "STRUCTURED_POINTS\nDIMENSIONS 0 3 3\nSPACING 1 1 1\nORIGIN 0 0 0",
+        "STRUCTURED_POINTS\nDIMENSIONS 3 3 -2",
+    ] {
+        let dir = std::env::temp_dir().join(format!("tetray-zero-dims-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("scratch");
+        let path = dir.join("zero.vtk");
+        std::fs::write(&path, format!("{LEGACY}DATASET {dataset}\n")).expect("write");
+        let err = tetray_io::load(&path, &tetray_io::LoadOptions::default()).expect_err(dataset);
+        let text = err.to_string();
+        assert!(text.contains("zero.vtk"), "{text}");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}

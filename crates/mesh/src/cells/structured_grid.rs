@@ -19,9 +19,16 @@ const VTK_LINE: i64 = 3;
 const VTK_QUAD: i64 = 9;
 const VTK_HEXAHEDRON: i64 = 12;
 
-/// Points along each axis of an extent.
+/// Points along each axis of an extent: 0 where it ends before it starts
+/// (a file's DIMENSIONS of 0), and no overflow for any i64 bounds (a
+/// count too large to index is [`point_count`]'s error).
 pub fn extent_dims(extent: &[i64; 6]) -> [usize; 3] {
-    [0, 1, 2].map(|a| (extent[2 * a + 1] - extent[2 * a]) as usize + 1)
+    [0, 1, 2].map(|a| {
+        let points = extent[2 * a + 1]
+            .saturating_sub(extent[2 * a])
+            .saturating_add(1);
+        usize::try_from(points).unwrap_or(0)
+    })
 }
 
 /// Checks that a grid of `dims` points can be indexed (u32 points, no
