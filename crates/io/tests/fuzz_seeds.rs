@@ -21,7 +21,12 @@ fn model(int64: bool) -> Model {
             }
         }
     }
-    coords.extend([[2.0, 0.0, 0.0], [2.0, 1.0, 0.0], [2.0, 0.0, 1.0], [2.0, 1.0, 1.0]]);
+    coords.extend([
+        [2.0, 0.0, 0.0],
+        [2.0, 1.0, 0.0],
+        [2.0, 0.0, 1.0],
+        [2.0, 1.0, 1.0],
+    ]);
     let times = vec![0.0, 1.0];
     let nodal = vec![(
         "T".to_string(),
@@ -39,7 +44,13 @@ fn model(int64: bool) -> Model {
         coords,
         blocks: vec![
             Block::new(1, "hex", "HEX8", 8, &[1, 2, 4, 3, 5, 6, 8, 7]),
-            Block::new(2, "wedges", "WEDGE6", 6, &[2, 9, 4, 6, 11, 8, 9, 10, 4, 11, 12, 8]),
+            Block::new(
+                2,
+                "wedges",
+                "WEDGE6",
+                6,
+                &[2, 9, 4, 6, 11, 8, 9, 10, 4, 11, 12, 8],
+            ),
         ],
         times,
         nodal,
@@ -62,7 +73,10 @@ fn classic_exodus_seeds_are_the_test_model_and_load() {
             std::fs::write(&path, &bytes).expect("write the seed");
         }
         let committed = std::fs::read(&path).expect("the committed seed");
-        assert!(committed == bytes, "{name} differs from the model; UPDATE_FUZZ_SEEDS=1 writes it");
+        assert!(
+            committed == bytes,
+            "{name} differs from the model; UPDATE_FUZZ_SEEDS=1 writes it"
+        );
         let mesh = load(&path, &LoadOptions::default()).expect("the seed loads");
         let tets = mesh.mesh.tets.len();
         assert!(tets >= 5 + 6, "{name}: {tets} tetrahedra");
