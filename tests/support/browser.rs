@@ -27,7 +27,7 @@ pub const WEBGPU_FLAGS: [&str; 3] = [
 static ONE_AT_A_TIME: std::sync::Mutex<()> = std::sync::Mutex::new(());
 
 pub struct Browser {
-    // Dropped last (fields drop in order): the session and driver go first.
+    // Dropped last (fields drop in order): the browser and driver go first.
     driver: Child,
     port: u16,
     session: String,

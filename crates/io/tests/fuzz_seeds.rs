@@ -70,14 +70,14 @@ fn classic_exodus_seeds_are_the_test_model_and_load() {
     ] {
         let path = folder.join(name);
         if update {
-            std::fs::write(&path, &bytes).expect("write the seed");
+            std::fs::write(&path, &bytes).expect("write the corpus file");
         }
-        let committed = std::fs::read(&path).expect("the committed seed");
+        let committed = std::fs::read(&path).expect("the committed file");
         assert!(
             committed == bytes,
             "{name} differs from the model; UPDATE_FUZZ_SEEDS=1 writes it"
         );
-        let mesh = load(&path, &LoadOptions::default()).expect("the seed loads");
+        let mesh = load(&path, &LoadOptions::default()).expect("the corpus file loads");
         let tets = mesh.mesh.tets.len();
         assert!(tets >= 5 + 6, "{name}: {tets} tetrahedra");
     }
