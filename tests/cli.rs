@@ -494,3 +494,26 @@ fn a_closed_pipe_ends_quietly() {
     assert!(!stderr.contains("panicked"), "{stderr}");
     assert_eq!(out.status.code(), Some(141), "{stderr}");
 }
+
+/// Found by the `hdf5_formats` fuzz target: a 7 kB VTKHDF image whose
+/// extent claims 18 M points (and no arrays) was made into 37 M
+/// tetrahedra however little memory there was; an image's size is now
+/// held to the memory it takes before its points are made.
+#[test]
+fn an_image_larger_than_memory_is_refused_before_it_is_made() {
+    let file =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("data/fuzz/vtkhdf-image-18m-points.vtkhdf");
+    let out = std::process::Command::new(support::BIN)
+        .arg("info")
+        .arg(&file)
+        .env("TETRAY_MEMORY_LIMIT", (512u64 << 20).to_string())
+        .output()
+        .expect("run tetray");
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("the image (3080196 x 3 x 2 points)"),
+        "{stderr}"
+    );
+    assert!(stderr.contains("TETRAY_MEMORY_LIMIT"), "{stderr}");
+}

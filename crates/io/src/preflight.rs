@@ -73,6 +73,17 @@ pub fn check(file: &str, what: impl FnOnce() -> String, needed: u64) -> Result<(
     }
 }
 
+/// Bytes a regular grid of `points` points and `cells` hexahedra takes
+/// once made into tetrahedra: the cell model (f64 points, connectivity,
+/// offsets and types) and the split's up to six tetrahedra per cell with
+/// their neighbours and walk records (about 48 bytes each).
+pub fn grid_bytes(points: u64, cells: u64) -> u64 {
+    points
+        .saturating_mul(24 + 16)
+        .saturating_add(cells.saturating_mul(8 * 8 + 16))
+        .saturating_add(cells.saturating_mul(6 * 48))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -44,6 +44,13 @@ pub(super) fn read(
     let dims = extent_dims(&extent);
     point_count(dims, &h5.name, "WholeExtent").map_err(crate::vtk::VtkError::from)?;
     let ncells = cell_count(dims);
+    // An image's points and cells are made, not read: nothing in the file
+    // bounds them but the memory they take.
+    crate::preflight::check(
+        &h5.name,
+        || format!("the image ({} x {} x {} points)", dims[0], dims[1], dims[2]),
+        crate::preflight::grid_bytes(dims.iter().map(|&d| d as u64).product(), ncells as u64),
+    )?;
     // The arrays first: their sizes check the extent before the points and
     // cells it implies are made.
     let point_arrays = arrays(h5, steps, step, "PointData", dims)?;
