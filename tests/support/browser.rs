@@ -100,7 +100,7 @@ impl Browser {
         }}});
         let reply = browser
             .request("POST", "/session", Some(&caps))
-            .expect("start a browser session");
+            .expect("start the browser");
         browser.session = reply["value"]["sessionId"]
             .as_str()
             .unwrap_or_else(|| panic!("no session: {reply}"))
