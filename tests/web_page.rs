@@ -14,7 +14,7 @@
 mod browser;
 mod support;
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use browser::{Browser, WEBGPU_FLAGS};
 use serde_json::{Value, json};
@@ -35,10 +35,37 @@ fn url(path: &Path) -> String {
     format!("file://{}", path.display())
 }
 
+/// Headless Chromium with `flags` and an empty scratch folder for `test`;
+/// `None` where the test skips (no adapter, or no browser where neither
+/// is required).
+fn start(test: &str, flags: &[&str]) -> Option<(Browser, PathBuf)> {
+    if !support::have_gpu() {
+        return None;
+    }
+    let browser = Browser::start(flags)?;
+    Some((browser, scratch("web_page", test)))
+}
+
+/// `tetray generate solid --tets TETS -o torus.vtu` in `dir`.
+fn torus(dir: &Path, tets: &str) {
+    let out = run(
+        dir,
+        &["generate", "solid", "--tets", tets, "-o", "torus.vtu"],
+    );
+    assert!(out.status.success(), "generate: {}", text(&out.stderr));
+}
+
+/// What the page's start resolves to. Navigation can return before a large
+/// page's script has run (seen once in a few runs with the 7 MB Blunt Fin
+/// page): wait up to 60 s for the script to define `tetrayReady`.
+const READY: &str = "for (let i = 0; i < 600 && !window.tetrayReady; i++) { \
+                     await new Promise((r) => setTimeout(r, 100)); } \
+                     return await window.tetrayReady;";
+
 /// Opens the page and waits for its first frame.
 fn open(browser: &Browser, page: &Path) -> Value {
     browser.open(&url(page));
-    let ready = browser.eval("return await window.tetrayReady;", json!(null));
+    let ready = browser.eval(READY, json!(null));
     assert_eq!(ready["ok"], json!(true), "the page did not start: {ready}");
     ready
 }
@@ -195,13 +222,9 @@ fn compare(
 
 #[test]
 fn blunt_fin_page_renders_as_the_gpu_ray_caster() {
-    if !support::have_gpu() {
-        return;
-    }
-    let Some(browser) = Browser::start(&WEBGPU_FLAGS) else {
+    let Some((browser, dir)) = start("blunt_fin", &WEBGPU_FLAGS) else {
         return;
     };
-    let dir = scratch("web_page", "blunt_fin");
     export(&dir, &["-o", "fin.html", "--size", "48x40"]);
     open(&browser, &dir.join("fin.html"));
     let views = [
@@ -240,18 +263,10 @@ fn blunt_fin_page_renders_as_the_gpu_ray_caster() {
 
 #[test]
 fn torus_page_renders_every_method_and_reentry_as_the_gpu_ray_caster() {
-    if !support::have_gpu() {
-        return;
-    }
-    let Some(browser) = Browser::start(&WEBGPU_FLAGS) else {
+    let Some((browser, dir)) = start("torus", &WEBGPU_FLAGS) else {
         return;
     };
-    let dir = scratch("web_page", "torus");
-    let out = run(
-        &dir,
-        &["generate", "solid", "--tets", "20k", "-o", "torus.vtu"],
-    );
-    assert!(out.status.success(), "generate: {}", text(&out.stderr));
+    torus(&dir, "20k");
     export(&dir, &["torus.vtu", "-o", "torus.html", "--size", "48x40"]);
     open(&browser, &dir.join("torus.html"));
     // Rays through the hole leave the shell and enter it again.
@@ -308,18 +323,10 @@ fn torus_page_renders_every_method_and_reentry_as_the_gpu_ray_caster() {
 
 #[test]
 fn folder_page_renders_as_the_single_file_and_the_benchmark_reports() {
-    if !support::have_gpu() {
-        return;
-    }
-    let Some(browser) = Browser::start(&WEBGPU_FLAGS) else {
+    let Some((browser, dir)) = start("folder", &WEBGPU_FLAGS) else {
         return;
     };
-    let dir = scratch("web_page", "folder");
-    let out = run(
-        &dir,
-        &["generate", "solid", "--tets", "5k", "-o", "torus.vtu"],
-    );
-    assert!(out.status.success(), "generate: {}", text(&out.stderr));
+    torus(&dir, "5k");
     let flags = ["torus.vtu", "--size", "32x32", "--bench", "2,3"];
     export(&dir, &[&flags[..], &["-o", "one.html"]].concat());
     export(&dir, &[&flags[..], &["-o", "site", "--folder"]].concat());
@@ -352,21 +359,13 @@ fn folder_page_renders_as_the_single_file_and_the_benchmark_reports() {
 
 #[test]
 fn page_without_webgpu_says_so() {
-    if !support::have_gpu() {
-        return;
-    }
-    let Some(browser) = Browser::start(&["--disable-features=WebGPU"]) else {
+    let Some((browser, dir)) = start("no_webgpu", &["--disable-features=WebGPU"]) else {
         return;
     };
-    let dir = scratch("web_page", "no_webgpu");
-    let out = run(
-        &dir,
-        &["generate", "solid", "--tets", "5k", "-o", "torus.vtu"],
-    );
-    assert!(out.status.success(), "generate: {}", text(&out.stderr));
+    torus(&dir, "5k");
     export(&dir, &["torus.vtu", "-o", "page.html", "--size", "32x32"]);
     browser.open(&url(&dir.join("page.html")));
-    let ready = browser.eval("return await window.tetrayReady;", json!(null));
+    let ready = browser.eval(READY, json!(null));
     assert_eq!(ready["ok"], json!(false), "{ready}");
     let status = browser.eval(
         "const s = document.getElementById('status'); return [s.className, s.textContent];",
@@ -379,13 +378,9 @@ fn page_without_webgpu_says_so() {
 
 #[test]
 fn blunt_fin_page_is_small_and_shows_its_first_frame() {
-    if !support::have_gpu() {
-        return;
-    }
-    let Some(browser) = Browser::start(&WEBGPU_FLAGS) else {
+    let Some((browser, dir)) = start("first_frame", &WEBGPU_FLAGS) else {
         return;
     };
-    let dir = scratch("web_page", "first_frame");
     export(&dir, &["-o", "fin.html"]);
     let bytes = std::fs::metadata(dir.join("fin.html")).expect("page").len();
     eprintln!("Blunt Fin page: {bytes} bytes");
@@ -399,18 +394,10 @@ fn blunt_fin_page_is_small_and_shows_its_first_frame() {
 
 #[test]
 fn mouse_and_controls_move_the_view_as_the_camera_flags_do() {
-    if !support::have_gpu() {
-        return;
-    }
-    let Some(browser) = Browser::start(&WEBGPU_FLAGS) else {
+    let Some((browser, dir)) = start("controls", &WEBGPU_FLAGS) else {
         return;
     };
-    let dir = scratch("web_page", "controls");
-    let out = run(
-        &dir,
-        &["generate", "solid", "--tets", "5k", "-o", "torus.vtu"],
-    );
-    assert!(out.status.success(), "generate: {}", text(&out.stderr));
+    torus(&dir, "5k");
     export(&dir, &["torus.vtu", "-o", "page.html", "--size", "40x40"]);
     open(&browser, &dir.join("page.html"));
     // A drag a quarter of the view to the right orbits the camera 50

@@ -30,7 +30,8 @@ pub struct Browser {
     // Dropped last (fields drop in order): the browser and driver go first.
     driver: Child,
     port: u16,
-    session: String,
+    /// The driver's id of the browser it started (WebDriver's "sessionId").
+    id: String,
     _turn: std::sync::MutexGuard<'static, ()>,
 }
 
@@ -80,7 +81,7 @@ impl Browser {
         let mut browser = Browser {
             driver: child,
             port,
-            session: String::new(),
+            id: String::new(),
             _turn: turn,
         };
         let start = Instant::now();
@@ -101,15 +102,15 @@ impl Browser {
         let reply = browser
             .request("POST", "/session", Some(&caps))
             .expect("start the browser");
-        browser.session = reply["value"]["sessionId"]
+        browser.id = reply["value"]["sessionId"]
             .as_str()
-            .unwrap_or_else(|| panic!("no session: {reply}"))
+            .unwrap_or_else(|| panic!("the driver started no browser: {reply}"))
             .to_string();
         Some(browser)
     }
 
     pub fn open(&self, url: &str) {
-        let path = format!("/session/{}/url", self.session);
+        let path = self.endpoint("/url");
         self.request("POST", &path, Some(&json!({"url": url})))
             .expect("open the page");
     }
@@ -122,7 +123,7 @@ impl Browser {
              (async (args) => {{ {body} }})(arguments[0]).then(done, \
              (e) => done({{__error: String(e && e.stack || e)}}));"
         );
-        let path = format!("/session/{}/execute/async", self.session);
+        let path = self.endpoint("/execute/async");
         let reply = self
             .request(
                 "POST",
@@ -140,12 +141,18 @@ impl Browser {
     /// A PNG of the window, as the browser draws it.
     pub fn screenshot(&self) -> Vec<u8> {
         use base64::Engine as _;
-        let path = format!("/session/{}/screenshot", self.session);
+        let path = self.endpoint("/screenshot");
         let reply = self.request("GET", &path, None).expect("screenshot");
         let text = reply["value"].as_str().expect("base64 PNG");
         base64::engine::general_purpose::STANDARD
             .decode(text)
             .expect("base64")
+    }
+
+    /// The WebDriver path of this browser's `tail` (the protocol names
+    /// the started browser a "session").
+    fn endpoint(&self, tail: &str) -> String {
+        format!("/session/{}{tail}", self.id)
     }
 
     fn request(&self, method: &str, path: &str, body: Option<&Value>) -> std::io::Result<Value> {
@@ -196,8 +203,8 @@ impl Browser {
 
 impl Drop for Browser {
     fn drop(&mut self) {
-        if !self.session.is_empty() {
-            let _ = self.request("DELETE", &format!("/session/{}", self.session), None);
+        if !self.id.is_empty() {
+            let _ = self.request("DELETE", &self.endpoint(""), None);
         }
         let _ = self.driver.kill();
         let _ = self.driver.wait();
