@@ -30,7 +30,8 @@ pub use context::{GpuContext, device_select_would_be_noisy, texture_2d};
 pub use error::GpuError;
 pub use layout::SceneLayout;
 pub use render::{
-    FrameJob, GpuFrame, GpuRaycaster, GpuRenderOptions, GpuStats, TILE, frame_params, walk_counters,
+    FrameJob, GpuFrame, GpuRaycaster, GpuRenderOptions, GpuStats, TILE, default_max_steps,
+    frame_params, walk_counters,
 };
 pub use target::GpuTarget;
 pub use upload::{GpuIntegrator, GpuScene, IntegratorData, PreintParams, SceneData, psi_texture};

@@ -324,6 +324,13 @@ impl GpuStats {
     }
 }
 
+/// The kernel's bound on tetrahedra visited per ray when none is given: a
+/// ray enters each convex cell at most once, plus cells it only touches
+/// (tetrahedra + 1024, at most `u32::MAX`).
+pub fn default_max_steps(tet_count: usize) -> u32 {
+    (tet_count as u64 + 1024).min(u64::from(u32::MAX)) as u32
+}
+
 /// The frame's parameters (WGSL `Params`) for `camera` and `opts`.
 pub fn frame_params(
     scene: &SceneLayout,
@@ -336,7 +343,6 @@ pub fn frame_params(
     }
     let rays = camera.pixel_rays(opts.width, opts.height)?;
     let (lo, hi) = scene.bounds;
-    let default_steps = (scene.tet_count as u64 + 1024).min(u64::from(u32::MAX)) as u32;
     Ok(Params {
         view: ViewParams::new(&rays),
         bounds_min: lo.to_array(),
@@ -345,7 +351,9 @@ pub fn frame_params(
         scene_abs_max: scene.scene_abs_max,
         width: opts.width,
         height: opts.height,
-        max_steps: opts.max_steps_per_ray.unwrap_or(default_steps),
+        max_steps: opts
+            .max_steps_per_ray
+            .unwrap_or_else(|| default_max_steps(scene.tet_count)),
         stop_below_sum: 3.0 * (1.0 - opts.early_termination),
         integrator: integrator.params(integrator.split),
         tet_chunk: scene.tet_chunk,

@@ -225,7 +225,6 @@ pub fn bundle(setup: &Setup, options: &PageOptions) -> Result<Bundle, WebError> 
         maps.push(ColormapSpec { name, integrators });
     }
     let (lo, hi) = data.bounds;
-    let default_steps = (data.tet_count() as u64 + 1024).min(u64::from(u32::MAX)) as u32;
     let manifest = Manifest {
         name: setup.name().to_string(),
         field: setup.extent.field.clone(),
@@ -243,7 +242,9 @@ pub fn bundle(setup: &Setup, options: &PageOptions) -> Result<Bundle, WebError> 
         size: [options.size.0, options.size.1],
         background: options.background,
         early_termination: options.early_termination,
-        max_steps: options.max_steps.unwrap_or(default_steps),
+        max_steps: options
+            .max_steps
+            .unwrap_or_else(|| tetray_gpu::default_max_steps(data.tet_count())),
         method: setup.method.gpu_stand_in().name().to_string(),
         methods: methods
             .iter()
