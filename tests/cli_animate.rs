@@ -211,8 +211,10 @@ fn an_mp4_holds_one_frame_per_step() {
 
 /// A series whose steps share points and cells (`generate solid --steps`,
 /// unstructured): the later steps keep the first step's scene (topology,
-/// BVH, walk records) and take only their fields, and their frames are
-/// still the renders of their steps, bit for bit.
+/// BVH, walk records; on the GPU the uploaded tetrahedra, the points'
+/// scalars written over) and take only their fields, and their frames are
+/// still the renders of their steps, bit for bit, on the CPU and on the
+/// GPU.
 #[test]
 fn steps_that_share_cells_keep_the_scene() {
     let dir = scratch("animate", "kept");
@@ -229,39 +231,84 @@ fn steps_that_share_cells_keep_the_scene() {
             "run.series",
         ],
     );
-    let common = ["--renderer", "cpu", "--size", SIZE, "--scalar", "linear"];
-    let stdout = ok(
-        &dir,
-        &[&["animate", "run.series", "-o", "frames/"][..], &common].concat(),
-    );
-    for k in 1..3 {
-        assert!(stdout.contains(&format!("step {k}: load")), "{stdout}");
-    }
-    assert_eq!(stdout.matches("scene kept").count(), 2, "{stdout}");
-    let range = stdout
-        .lines()
-        .find_map(|l| l.strip_prefix("colour range ["))
-        .and_then(|l| l.split(']').next())
-        .expect("the range line")
-        .replace(' ', "");
-    for k in 0..3 {
-        let step = k.to_string();
-        let png = format!("render{k}.png");
-        let clim = format!("--clim={range}");
-        let args = [
-            "render",
-            "run.series",
-            "--time-step",
-            &step,
-            &clim,
-            "-o",
-            &png,
-        ];
-        ok(&dir, &[&args[..], &common].concat());
-        assert_eq!(
-            rgb(&dir.join(format!("frames/frame_{k:04}.png"))),
-            rgb(&dir.join(&png)),
-            "step {k}"
+    let renderers: &[&str] = if support::have_gpu() {
+        &["cpu", "gpu"]
+    } else {
+        &["cpu"]
+    };
+    for renderer in renderers {
+        let common = ["--renderer", renderer, "--size", SIZE, "--scalar", "linear"];
+        let frames = format!("{renderer}/");
+        let stdout = ok(
+            &dir,
+            &[&["animate", "run.series", "-o", &frames][..], &common].concat(),
         );
+        for k in 1..3 {
+            assert!(stdout.contains(&format!("step {k}: load")), "{stdout}");
+        }
+        assert_eq!(stdout.matches("scene kept").count(), 2, "{stdout}");
+        let range = stdout
+            .lines()
+            .find_map(|l| l.strip_prefix("colour range ["))
+            .and_then(|l| l.split(']').next())
+            .expect("the range line")
+            .replace(' ', "");
+        for k in 0..3 {
+            let step = k.to_string();
+            let png = format!("{renderer}-render{k}.png");
+            let clim = format!("--clim={range}");
+            let args = [
+                "render",
+                "run.series",
+                "--time-step",
+                &step,
+                &clim,
+                "-o",
+                &png,
+            ];
+            ok(&dir, &[&args[..], &common].concat());
+            assert_eq!(
+                rgb(&dir.join(format!("{renderer}/frame_{k:04}.png"))),
+                rgb(&dir.join(&png)),
+                "{renderer}, step {k}"
+            );
+        }
     }
+}
+
+/// A series whose points move (the second step's grid stretched along
+/// x): that step is made anew, not kept (the engine's tests check that it
+/// keeps the first step's camera), and its frame differs from the first.
+#[test]
+fn a_moving_mesh_is_made_anew() {
+    let dir = scratch("animate", "moving");
+    write_step(&dir.join("a.vtk"), 1.0);
+    let stretched = std::fs::read_to_string(dir.join("a.vtk"))
+        .expect("written")
+        .replace("SPACING 0.25 ", "SPACING 0.375 ");
+    assert!(stretched.contains("SPACING 0.375 "), "{stretched}");
+    std::fs::write(dir.join("b.vtk"), stretched).expect("write");
+    std::fs::write(
+        dir.join("m.series"),
+        r#"{"file-series-version": "1.0", "files": [{"name": "a.vtk", "time": 0}, {"name": "b.vtk", "time": 1}]}"#,
+    )
+    .expect("write");
+    let args = [
+        "animate",
+        "m.series",
+        "-o",
+        "frames/",
+        "--renderer",
+        "cpu",
+        "--size",
+        SIZE,
+        "--clim=0,1",
+    ];
+    let stdout = ok(&dir, &args);
+    assert!(stdout.contains("step 1: load"), "{stdout}");
+    assert_eq!(stdout.matches("scene kept").count(), 0, "{stdout}");
+    assert_ne!(
+        rgb(&dir.join("frames/frame_0000.png")),
+        rgb(&dir.join("frames/frame_0001.png"))
+    );
 }

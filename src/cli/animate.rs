@@ -16,7 +16,7 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use super::args::{FrameFlags, WalkArgs, parse_finite, parse_rgb, parse_size};
 use super::scene;
 use tetray_core::Movie;
-use tetray_engine::Engine;
+use tetray_engine::{Engine, StepCost, TimeSteps};
 
 #[derive(Debug, Clone, Args)]
 pub struct AnimateArgs {
@@ -58,7 +58,11 @@ pub fn run(args: &AnimateArgs) -> anyhow::Result<()> {
         bail!("animate takes its time steps from --times, not --time-step or --time");
     }
     scene::configure_threads(args.walk.threads)?;
-    let (steps, times) = steps(args)?;
+    let mut series = mesh
+        .mesh
+        .as_ref()
+        .map(|path| TimeSteps::new(path, load_options(args)));
+    let (steps, times) = steps(args, series.as_ref())?;
     let count = if steps.is_empty() {
         if args.orbit.is_none() {
             bail!(
@@ -76,9 +80,9 @@ pub fn run(args: &AnimateArgs) -> anyhow::Result<()> {
     // steps are read.
     let mut movie = Movie::create(&args.output, args.size, args.fps, args.background)?;
     let mut flags = args.frame.clone();
-    if flags.integrator.clim.is_none()
+    if let (None, Some(series)) = (&flags.integrator.clim, &series)
         && !steps.is_empty()
-        && let Some(range) = range_over(args, &steps)?
+        && let Some(range) = series.range(&steps, flags.integrator.scalar.as_deref())?
     {
         println!(
             "colour range [{}, {}]: the field over the {} steps rendered",
@@ -88,6 +92,36 @@ pub fn run(args: &AnimateArgs) -> anyhow::Result<()> {
         );
         flags.integrator.clim = Some(range);
     }
+    let frame = scene::FrameArgs {
+        flags: &flags,
+        walk: &args.walk,
+        size: args.size,
+    };
+    let options = frame.options(scene::read_tf(&flags.integrator)?);
+    let log = tetray_engine::Log {
+        info: &say,
+        warn: &scene::warn,
+    };
+    let quiet = tetray_engine::Log {
+        info: &quiet_line,
+        warn: &scene::warn,
+    };
+    let mut setup = match (&mut series, steps.first()) {
+        (Some(series), Some(&first)) => series.prepare(Some(first), &options, log)?,
+        _ => scene::prepare_with(mesh, &options, &say)?,
+    };
+    if steps.len() < 2 {
+        // Nothing more is read: the load's freed blocks go back. (Over
+        // time steps they are kept for the next step's read, which would
+        // otherwise fault every page of them in again.)
+        super::ALLOCATOR.release();
+    }
+    let mut engine = Engine::new(args.walk.renderer, &setup, &say)?;
+    let mut cost = StepCost {
+        load: setup.load_time,
+        scene: setup.scene_time,
+        kept: false,
+    };
 
     let bar = ProgressBar::with_draw_target(Some(count as u64), ProgressDrawTarget::stderr());
     bar.set_style(
@@ -95,54 +129,19 @@ pub fn run(args: &AnimateArgs) -> anyhow::Result<()> {
             .unwrap_or_else(|_| ProgressStyle::default_bar())
             .progress_chars("=> "),
     );
-    let mut current: Option<(Option<usize>, tetray_engine::Setup, Engine)> = None;
     for index in 0..count {
         let step = steps.get(index).copied();
-        let loaded = current.as_ref().is_none_or(|(s, _, _)| *s != step);
-        // What making this frame's setup cost: load, scene, whether the
-        // previous step's scene was kept.
-        let mut cost = (0.0, 0.0, false);
-        if loaded {
-            flags.mesh.time_step = step;
-            let reused = match (&mut current, step, &flags.mesh.mesh) {
-                (Some((at, setup, engine)), Some(k), Some(path)) => {
-                    let start = std::time::Instant::now();
-                    let next = tetray_io::load(path, &load_options(args, Some(k)))?;
-                    cost.0 = start.elapsed().as_secs_f64();
-                    let start = std::time::Instant::now();
-                    let log = tetray_engine::Log {
-                        info: &quiet,
-                        warn: &scene::warn,
-                    };
-                    let kept = setup.next_step(&next, log)?;
-                    if kept {
-                        *engine = Engine::new(args.walk.renderer, setup, &quiet)?;
-                        *at = step;
-                        cost.1 = start.elapsed().as_secs_f64();
-                        cost.2 = true;
-                    }
-                    kept
-                }
-                _ => false,
-            };
-            if !reused {
-                let frame = scene::FrameArgs {
-                    flags: &flags,
-                    walk: &args.walk,
-                    size: args.size,
-                };
-                // The first step's setup is described; the others repeat it.
-                let log: &dyn Fn(String) = if index == 0 { &say } else { &quiet };
-                let setup = scene::prepare(frame, log)?;
-                let engine = Engine::new(args.walk.renderer, &setup, log)?;
-                cost.0 = setup.load_time.as_secs_f64();
-                cost.1 = setup.scene_time.as_secs_f64();
-                current = Some((step, setup, engine));
+        let loaded = index == 0 || step != steps.get(index - 1).copied();
+        if let (true, false, Some(series), Some(step)) = (loaded, index == 0, &mut series, step) {
+            // The steps share one view: the camera stays, and a step whose
+            // mesh is the one held only brings its fields.
+            cost = series.advance(&mut setup, step, &options, quiet)?;
+            if cost.kept {
+                engine.take_fields(&setup, &quiet_line)?;
+            } else {
+                engine = Engine::new(args.walk.renderer, &setup, &quiet_line)?;
             }
         }
-        let Some((_, setup, engine)) = &current else {
-            unreachable!("made above");
-        };
         let mut camera = setup.camera;
         if let Some(orbit) = args.orbit {
             camera
@@ -150,17 +149,17 @@ pub fn run(args: &AnimateArgs) -> anyhow::Result<()> {
                 .and_then(|()| camera.orthogonalize_view_up())
                 .context("orbiting the camera")?;
         }
-        let frame = engine.render(setup, &camera, &args.walk, args.size, None)?;
+        let frame = engine.render(&setup, &camera, &args.walk, args.size, None)?;
         super::render::warn_about(&frame.stats.counters);
         if let (true, Some(step)) = (loaded, step) {
             // What each step costs: its file, its scene (kept from the step
             // before when the cells and points are the same), its frame.
-            let scene = if cost.2 { "scene kept" } else { "scene" };
+            let scene = if cost.kept { "scene kept" } else { "scene" };
             bar.suspend(|| {
                 println!(
                     "step {step}: load {:.3} s, {scene} {:.3} s, integrator {:.3} s, frame {:.3} s",
-                    cost.0,
-                    cost.1,
+                    cost.load.as_secs_f64(),
+                    cost.scene.as_secs_f64(),
                     setup.integrator_time.as_secs_f64(),
                     frame.stats.elapsed.as_secs_f64()
                 );
@@ -183,15 +182,17 @@ pub fn run(args: &AnimateArgs) -> anyhow::Result<()> {
 
 /// The steps to render and a description of their times; none for a file
 /// with one step (or none) when `--times` is not given.
-fn steps(args: &AnimateArgs) -> anyhow::Result<(Vec<usize>, Option<String>)> {
-    let Some(path) = &args.frame.mesh.mesh else {
+fn steps(
+    args: &AnimateArgs,
+    series: Option<&TimeSteps>,
+) -> anyhow::Result<(Vec<usize>, Option<String>)> {
+    let Some(series) = series else {
         if args.times.is_some() {
             bail!("--times needs a file with time steps");
         }
         return Ok((Vec::new(), None));
     };
-    let first = tetray_io::load(path, &load_options(args, None))?;
-    let times = first.report.times.clone();
+    let times = series.times()?;
     let steps: Vec<usize> = match args.times.as_deref() {
         None if times.len() > 1 => (0..times.len()).collect(),
         None => return Ok((Vec::new(), None)),
@@ -239,11 +240,11 @@ fn parse_steps(text: &str, count: usize) -> anyhow::Result<Vec<usize>> {
     Ok(steps)
 }
 
-fn load_options(args: &AnimateArgs, step: Option<usize>) -> tetray_io::LoadOptions {
+fn load_options(args: &AnimateArgs) -> tetray_io::LoadOptions {
     let mesh = &args.frame.mesh;
     tetray_io::LoadOptions {
         plot3d_q: mesh.q.clone(),
-        time_step: step,
+        time_step: None,
         time: None,
         block: mesh.block.clone(),
         linearize: mesh.linearize.into(),
@@ -254,30 +255,4 @@ fn say(line: String) {
     println!("{line}");
 }
 
-fn quiet(_: String) {}
-
-/// The rendered field's range over `steps` (ParaView's "rescale over all
-/// time steps"): the field `--scalar` names, else the one the first step
-/// renders by default. `None` for a field constant over every step (each
-/// frame then renders it as `render` does, a uniform volume).
-fn range_over(args: &AnimateArgs, steps: &[usize]) -> anyhow::Result<Option<(f32, f32)>> {
-    let Some(path) = &args.frame.mesh.mesh else {
-        bail!("no file");
-    };
-    let mut name = args.frame.integrator.scalar.clone();
-    let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
-    for &step in steps {
-        let loaded = tetray_io::load(path, &load_options(args, Some(step)))?;
-        let fields = &loaded.mesh.fields;
-        let name = name.get_or_insert_with(|| {
-            tetray_mesh::default_field(&loaded.mesh).map_or(String::new(), |f| f.name.clone())
-        });
-        let Some(field) = fields.iter().find(|f| &f.name == name) else {
-            bail!("{}: step {step} has no field {name:?}", path.display());
-        };
-        let (a, b) = tetray_mesh::value_range(&field.values);
-        lo = lo.min(a);
-        hi = hi.max(b);
-    }
-    Ok((lo < hi).then_some((lo, hi)))
-}
+fn quiet_line(_: String) {}

@@ -8,7 +8,8 @@
 //! a regular grid or both; the camera, the transfer function and the
 //! integrator, with the defaults of the whole volume's [`Extent`]) ->
 //! [`Engine`] (CPU or GPU ray caster, cell projection, shear-warp) ->
-//! [`Frame`]; [`measure`] times frames; [`segment`] integrates one ray
+//! [`Frame`]; [`TimeSteps`] moves a setup through a file's time steps,
+//! keeping what the steps share; [`measure`] times frames; [`segment`] integrates one ray
 //! segment by any method.
 //!
 //! Nothing here parses command lines or prints: progress and warnings go
@@ -27,6 +28,7 @@ mod renderer;
 mod segment;
 mod setup;
 mod source;
+mod steps;
 pub mod tf;
 
 pub use camera::{build_camera, warn_if_inside};
@@ -43,4 +45,5 @@ pub use renderer::{Engine, GpuEngine, ProjectEngine};
 pub use segment::{SegmentOptions, segment};
 pub use setup::{Extent, Setup, Volume, prepare_mesh, prepare_part};
 pub use source::{EMBEDDED_NAME, MeshInput, Source, load, plural};
+pub use steps::{StepCost, TimeSteps};
 pub use tetray_core::defaults::DEFAULT_VIEW;

@@ -147,6 +147,28 @@ impl Engine {
         })))
     }
 
+    /// Follows `setup` after it took a time step's fields
+    /// ([`Setup::take_fields`]): the GPU ray caster writes the points'
+    /// scalars and the integrator's tables over what it uploaded; the
+    /// cell projection and shear-warp are made again.
+    pub fn take_fields(&mut self, setup: &Setup, log: &dyn Fn(String)) -> Result<(), EngineError> {
+        let again = match self {
+            Engine::Cpu => return Ok(()),
+            Engine::Gpu(gpu) => {
+                gpu.scene
+                    .write_points(&gpu.ctx, setup.scene()?)
+                    .context("writing the time step's field to the GPU")?;
+                gpu.integrator = GpuIntegrator::new(&gpu.ctx, &setup.integrator)
+                    .context("uploading the transfer function to the GPU")?;
+                return Ok(());
+            }
+            Engine::Project(_) => RendererChoice::Project,
+            Engine::ShearWarp(_) => RendererChoice::ShearWarp,
+        };
+        *self = Engine::new(again, setup, log)?;
+        Ok(())
+    }
+
     /// "cpu", "gpu" or "project".
     pub fn name(&self) -> &'static str {
         match self {

@@ -382,29 +382,45 @@ impl Setup {
         Ok(())
     }
 
-    /// Takes the fields of `loaded`, another time step of the same data,
-    /// when its points and cells are this setup's (see
-    /// [`Scene::with_step`]): the topology, BVH and walk records are kept,
-    /// the transfer function and integrator made again for the field's
-    /// range (unchanged under a fixed range). `false` when the step's mesh
-    /// differs, or the volume is not tetrahedra alone: prepare it anew.
-    pub fn next_step(&mut self, loaded: &LoadedMesh, log: Log<'_>) -> Result<bool, EngineError> {
-        let Volume::Tetrahedra(scene) = &self.volume else {
-            return Ok(false);
+    /// Takes `fields`, the point fields of another time step of the same
+    /// points and tetrahedra (in the numbering they were read in): the
+    /// topology, BVH and walk records stay, the transfer function and
+    /// integrator are made again for the field's range (kept under a fixed
+    /// range). The caller vouches that the geometry is this setup's (see
+    /// [`crate::TimeSteps`], which compares it as read). On an error the
+    /// setup is unchanged.
+    pub fn take_fields(
+        &mut self,
+        mut fields: Vec<ScalarField>,
+        log: Log<'_>,
+    ) -> Result<(), EngineError> {
+        let name = self.extent.name.clone();
+        let field = self.extent.field.clone();
+        let Some(slot) = self.scene_slot() else {
+            bail!("{name}: a time step's fields need the tetrahedra (this setup has none)");
         };
-        let name = &self.extent.name;
-        let Some(step) = scene
-            .with_step(&loaded.mesh)
-            .with_context(|| format!("{name}: field {:?}", self.extent.field))?
-        else {
-            return Ok(false);
-        };
-        let range = value_range(&step.scalar);
-        let tf_range = self.choice.tf_range(range);
+        if field == SOLID && !fields.iter().any(|f| f.name == SOLID) {
+            fields.push(ScalarField {
+                name: SOLID.into(),
+                values: vec![0.0; slot.mesh.points.len()],
+            });
+        }
+        match Arc::get_mut(slot) {
+            Some(scene) => scene.set_input_fields(fields),
+            None => {
+                let mut scene = Scene::clone(slot);
+                scene
+                    .set_input_fields(fields)
+                    .map(|()| *slot = Arc::new(scene))
+            }
+        }
+        .with_context(|| format!("{name}: field {field:?}"))?;
+        let range = value_range(&self.scene()?.scalar);
         if self.choice.range.is_none() {
+            let tf_range = self.choice.tf_range(range);
             let tf = tf::transfer_function(
                 &self.choice.tf,
-                &self.extent.field,
+                &field,
                 tf_range,
                 self.extent.bounds,
                 self.unit_distance,
@@ -426,8 +442,7 @@ impl Setup {
             self.integrator_time = Duration::ZERO;
         }
         self.extent.range = range;
-        self.volume = Volume::Tetrahedra(Arc::new(step));
-        Ok(true)
+        Ok(())
     }
 
     fn scene_slot(&mut self) -> Option<&mut Arc<Scene>> {

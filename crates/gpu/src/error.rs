@@ -47,6 +47,8 @@ pub enum GpuError {
         frame: (u32, u32),
         target: (u32, u32),
     },
+    #[error("new point fields do not fit the uploaded mesh: {0}")]
+    Mismatch(String),
     #[error("reading the frame back from the GPU failed: {0}")]
     Readback(String),
     #[error("the GPU reported an error: {0}")]

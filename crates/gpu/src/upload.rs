@@ -90,6 +90,7 @@ pub struct GpuScene {
     pub(crate) tets: [wgpu::Buffer; 2],
     pub(crate) bvh: wgpu::Buffer,
     pub(crate) point_chunk: u32,
+    point_count: usize,
     pub(crate) tet_chunk: u32,
     pub(crate) prim_offset: u32,
     pub(crate) face_offset: u32,
@@ -131,6 +132,7 @@ impl GpuScene {
         };
         let (tets, tet_chunk) = chunked(ctx, "tetrahedra", &data.tets, 2, cap(tet_limit))?;
         let (points, point_chunk) = chunked(ctx, "points", &data.points, 1, cap(point_limit))?;
+        let point_count = data.points.len();
         let bvh_bytes = std::mem::size_of_val(data.bvh.as_slice()) as u64;
         if bvh_bytes > limits.max_storage_buffer_binding_size {
             return Err(GpuError::TooLarge {
@@ -150,6 +152,7 @@ impl GpuScene {
             tets,
             bvh,
             point_chunk,
+            point_count,
             tet_chunk,
             prim_offset: data.prim_offset,
             face_offset: data.face_offset,
@@ -158,6 +161,34 @@ impl GpuScene {
             tet_count: data.tet_count(),
             bytes,
         })
+    }
+
+    /// Writes the points' scalars of `scene` (another time step of the
+    /// uploaded mesh: the same points and tetrahedra, new fields) over the
+    /// uploaded points; the tetrahedra and the BVH stay.
+    ///
+    /// # Errors
+    /// [`GpuError::Mismatch`] for a scene of another point count; a lost
+    /// device.
+    pub fn write_points(&self, ctx: &GpuContext, scene: &Scene) -> Result<(), GpuError> {
+        ctx.check()?;
+        let points = scene.point_records();
+        if points.len() != self.point_count {
+            return Err(GpuError::Mismatch(format!(
+                "the scene has {} points, the uploaded mesh {}",
+                points.len(),
+                self.point_count
+            )));
+        }
+        let (head, tail) = points.split_at(self.point_chunk as usize);
+        ctx.queue
+            .write_buffer(&self.points[0], 0, bytemuck::cast_slice(head));
+        if !tail.is_empty() {
+            ctx.queue
+                .write_buffer(&self.points[1], 0, bytemuck::cast_slice(tail));
+        }
+        ctx.queue.submit([]);
+        Ok(())
     }
 
     /// Bytes of mesh data on the GPU.
@@ -223,21 +254,32 @@ fn chunked<T: Pod>(
     }
     let first = elements.min(per_chunk);
     let split = first * per_element;
-    let head = storage(ctx, what, &items[..split]);
-    let tail = storage(ctx, what, &items[split..]);
+    // Written again when a time step brings new fields (points only).
+    let usage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST;
+    let head = storage_with(ctx, what, &items[..split], usage);
+    let tail = storage_with(ctx, what, &items[split..], usage);
     Ok(([head, tail], first as u32))
 }
 
 /// A read-only storage buffer holding `items` (at least 16 bytes: WGSL
 /// arrays may not be bound empty).
 pub(crate) fn storage<T: Pod>(ctx: &GpuContext, label: &str, items: &[T]) -> wgpu::Buffer {
+    storage_with(ctx, label, items, wgpu::BufferUsages::STORAGE)
+}
+
+fn storage_with<T: Pod>(
+    ctx: &GpuContext,
+    label: &str,
+    items: &[T],
+    usage: wgpu::BufferUsages,
+) -> wgpu::Buffer {
     let mut bytes = bytemuck::cast_slice::<T, u8>(items).to_vec();
     bytes.resize(bytes.len().max(16), 0);
     ctx.device
         .create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some(label),
             contents: &bytes,
-            usage: wgpu::BufferUsages::STORAGE,
+            usage,
         })
 }
 

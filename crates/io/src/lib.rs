@@ -43,7 +43,7 @@ pub use error::IoError;
 pub use exodus::{ExodusError, ExodusOptions, ExodusRead, read_exodus_bytes, read_exodus_file};
 pub use load::{
     LoadOptions, load, load_grid, load_image_data, load_image_grid, load_piece_subset,
-    load_plot3d_bytes, plot3d_q_sibling,
+    load_plot3d_bytes, plot3d_q_sibling, read_file,
 };
 pub use openfoam::{OpenFoamError, OpenFoamOptions, OpenFoamRead, read_openfoam};
 pub use plot3d::{Plot3dRead, read_plot3d_bytes, read_plot3d_files};

@@ -79,7 +79,7 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<LoadedMesh, IoError> {
 }
 
 /// The reader's output for the file at `path`, chosen as [`load`] says.
-fn read_file(path: &Path, opts: &LoadOptions) -> Result<MeshRead, IoError> {
+pub fn read_file(path: &Path, opts: &LoadOptions) -> Result<MeshRead, IoError> {
     let (format, _, _) = format_for(path)?;
     let vtk_opts = vtk::ReadOptions {
         linearize: opts.linearize,

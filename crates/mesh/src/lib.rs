@@ -51,7 +51,7 @@ pub use scale::{
 };
 pub use search::{first_index, first_position};
 pub use topology::{MAX_TETS, boundary_faces_of};
-pub use validate::{ValidationReport, validate, validate_with_topology};
+pub use validate::{ValidationReport, check_input, validate, validate_with_topology};
 
 use glam::Vec3;
 

@@ -67,7 +67,7 @@ pub fn validate_with_topology(mesh: &TetMesh) -> Result<(ValidationReport, Topol
 
 /// What must hold before any geometry is looked at: counts, indices in
 /// range and not repeated, finite coordinates and scalars.
-pub(crate) fn check_input(mesh: &TetMesh) -> Result<(), MeshError> {
+pub fn check_input(mesh: &TetMesh) -> Result<(), MeshError> {
     check_sizes(mesh)?;
     check_indices(mesh)?;
     check_finite(mesh)

@@ -78,6 +78,7 @@ pub struct WalkTet {
 pub const FINAL_EXIT: u32 = NO_NEIGHBOR - 1;
 
 /// A mesh ready to be ray cast with one active scalar field.
+#[derive(Clone)]
 pub struct Scene {
     pub mesh: TetMesh,
     pub topology: Topology,
@@ -252,44 +253,58 @@ impl Scene {
         })
     }
 
-    /// The same scene with the point fields of `mesh`, another time step of
-    /// the same data, when its points and tetrahedra are this scene's
-    /// input exactly (bit for bit, in the input's numbering): the topology,
-    /// the BVH and the walk records are kept, the fields renumbered as the
-    /// points were and the active one taken again. `None` when the points
-    /// or cells differ (a moving mesh, another mesh): build a new scene.
-    pub fn with_step(&self, mesh: &TetMesh) -> Result<Option<Scene>, SceneError> {
+    /// Takes `fields`, the point fields of another time step of the same
+    /// points and tetrahedra, in the input's numbering (one value per
+    /// point as read): the fields are renumbered as the points were and
+    /// the active one taken again, by name; the topology, the BVH and the
+    /// walk records stay. The caller vouches that the geometry is this
+    /// scene's (`tetray_engine::TimeSteps` compares it as read). On an
+    /// error the scene is unchanged.
+    pub fn set_input_fields(&mut self, fields: Vec<ScalarField>) -> Result<(), SceneError> {
         let n = self.mesh.points.len();
-        if mesh.points.len() != n || mesh.tets.len() != self.mesh.tets.len() {
-            return Ok(None);
-        }
-        let point_from = |p: usize| self.input_point(p as u32) as usize;
-        let same_points = (0..n).all(|p| {
-            let (a, b) = (self.mesh.points[p], mesh.points[point_from(p)]);
-            a.to_array().map(f32::to_bits) == b.to_array().map(f32::to_bits)
-        });
-        let same_tets = same_points
-            && (0..self.mesh.tets.len()).all(|t| {
-                let input = mesh.tets[self.input_tet(t as u32) as usize];
-                self.mesh.tets[t].map(|p| point_from(p as usize) as u32) == input
-            });
-        if !same_tets {
-            return Ok(None);
-        }
-        let fields = mesh
-            .fields
-            .iter()
-            .map(|f| ScalarField {
+        if let Some(f) = fields.iter().find(|f| f.values.len() != n) {
+            return Err(SceneError::FieldLength {
                 name: f.name.clone(),
-                values: (0..n).map(|p| f.values[point_from(p)]).collect(),
-            })
-            .collect();
+                values: f.values.len(),
+                points: n,
+            });
+        }
+        let fields: Vec<ScalarField> = match &self.order {
+            None => fields,
+            Some(order) => fields
+                .into_iter()
+                .map(|f| ScalarField {
+                    values: order
+                        .point_from
+                        .iter()
+                        .map(|&p| f.values[p as usize])
+                        .collect(),
+                    name: f.name,
+                })
+                .collect(),
+        };
         let step = TetMesh {
-            points: self.mesh.points.clone(),
-            tets: self.mesh.tets.clone(),
+            points: Vec::new(),
+            tets: Vec::new(),
             fields,
         };
-        self.with_mesh(step, &self.field).map(Some)
+        let scalar = match step.field(&self.field) {
+            Some(field) => match first_position(&field.values, |v| !v.is_finite()) {
+                Some(point) => Err(SceneError::NonFiniteScalar {
+                    name: self.field.clone(),
+                    point: self.input_point(point as u32) as usize,
+                    value: field.values[point],
+                }),
+                None => Ok(field.values.clone()),
+            },
+            None => active_field(&step, &self.field),
+        }?;
+        for (record, &s) in self.points.iter_mut().zip(&scalar) {
+            record[3] = s;
+        }
+        self.scalar = scalar;
+        self.mesh.fields = step.fields;
+        Ok(())
     }
 
     /// The renumbering applied to the input (`None`: input order).

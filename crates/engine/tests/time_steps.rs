@@ -1,0 +1,147 @@
+//! [`TimeSteps`]: a step whose points and cells are the held step's, as
+//! read, only brings its fields (the setup then equals one made from
+//! scratch for that step, field, range and integrator); a step whose
+//! points move is made anew with the first step's camera; a bad field in a
+//! later step is an error that names the file, and the setup is unchanged.
+
+use std::path::{Path, PathBuf};
+
+use tetray_engine::{FrameOptions, Log, TimeSteps};
+
+/// Legacy VTK unstructured grid: a unit cube of 6 tetrahedra (points
+/// stretched along x by `stretch`), the field f = scale * (x + 2y + 3z).
+fn write_step(path: &Path, scale: f32, stretch: f32, bad: bool) {
+    let corners: Vec<[f32; 3]> = (0..8)
+        .map(|i| {
+            let c = [(i & 1) as f32, ((i >> 1) & 1) as f32, ((i >> 2) & 1) as f32];
+            [c[0] * stretch, c[1], c[2]]
+        })
+        .collect();
+    let tets = [
+        [0, 1, 3, 7],
+        [0, 1, 5, 7],
+        [0, 2, 3, 7],
+        [0, 2, 6, 7],
+        [0, 4, 5, 7],
+        [0, 4, 6, 7],
+    ];
+    let mut s = String::from(
+        "# vtk DataFile Version 3.0\nstep\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 8 float\n",
+    );
+    for p in &corners {
+        s.push_str(&format!("{} {} {}\n", p[0], p[1], p[2]));
+    }
+    s.push_str("CELLS 6 30\n");
+    for t in &tets {
+        s.push_str(&format!("4 {} {} {} {}\n", t[0], t[1], t[2], t[3]));
+    }
+    s.push_str("CELL_TYPES 6\n10\n10\n10\n10\n10\n10\n");
+    s.push_str("POINT_DATA 8\nSCALARS f float\nLOOKUP_TABLE default\n");
+    for (i, p) in corners.iter().enumerate() {
+        let v = scale * (p[0] / stretch + 2.0 * p[1] + 3.0 * p[2]);
+        if bad && i == 5 {
+            s.push_str("nan\n");
+        } else {
+            s.push_str(&format!("{v}\n"));
+        }
+    }
+    std::fs::write(path, s).expect("write a step");
+}
+
+/// A series of steps `(scale, stretch, bad)` in a fresh folder.
+fn series(name: &str, steps: &[(f32, f32, bool)]) -> PathBuf {
+    let dir =
+        std::env::temp_dir().join(format!("tetray-engine-steps-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("scratch folder");
+    let mut files = Vec::new();
+    for (k, &(scale, stretch, bad)) in steps.iter().enumerate() {
+        write_step(&dir.join(format!("s{k}.vtk")), scale, stretch, bad);
+        files.push(format!(r#"{{"name": "s{k}.vtk", "time": {k}}}"#));
+    }
+    let path = dir.join("run.series");
+    std::fs::write(
+        &path,
+        format!(
+            r#"{{"file-series-version": "1.0", "files": [{}]}}"#,
+            files.join(", ")
+        ),
+    )
+    .expect("write the series");
+    path
+}
+
+fn options() -> FrameOptions {
+    FrameOptions {
+        size: (16, 12),
+        ..FrameOptions::default()
+    }
+}
+
+const QUIET: Log<'static> = Log {
+    info: &|_| {},
+    warn: &|_| {},
+};
+
+#[test]
+fn a_step_of_the_same_mesh_brings_only_its_fields() {
+    let path = series("kept", &[(1.0, 1.0, false), (2.0, 1.0, false)]);
+    let mut steps = TimeSteps::new(&path, Default::default());
+    assert_eq!(steps.times().expect("times"), vec![0.0, 1.0]);
+    let mut setup = steps.prepare(Some(0), &options(), QUIET).expect("step 0");
+    assert_eq!(setup.extent.range, (0.0, 6.0));
+    let cost = steps
+        .advance(&mut setup, 1, &options(), QUIET)
+        .expect("step 1");
+    assert!(cost.kept, "{cost:?}");
+    // Exactly what a setup made from scratch for step 1 holds.
+    let fresh = TimeSteps::new(&path, Default::default())
+        .prepare(Some(1), &options(), QUIET)
+        .expect("step 1 from scratch");
+    assert_eq!(setup.extent, fresh.extent);
+    assert_eq!(setup.extent.range, (0.0, 12.0));
+    let (kept, made) = (setup.scene().expect("scene"), fresh.scene().expect("scene"));
+    assert_eq!(kept.scalar, made.scalar);
+    assert_eq!(kept.mesh.tets, made.mesh.tets);
+    assert_eq!(kept.point_records(), made.point_records());
+    assert_eq!(setup.tf, fresh.tf);
+    assert_eq!(setup.camera, fresh.camera);
+    // The range over both steps, as an animation's colour range.
+    assert_eq!(
+        steps.range(&[0, 1], None).expect("range"),
+        Some((0.0, 12.0))
+    );
+}
+
+#[test]
+fn a_moving_mesh_is_made_anew_from_the_first_view() {
+    let path = series("moving", &[(1.0, 1.0, false), (1.0, 1.5, false)]);
+    let mut steps = TimeSteps::new(&path, Default::default());
+    let mut setup = steps.prepare(Some(0), &options(), QUIET).expect("step 0");
+    let first = setup.camera;
+    let cost = steps
+        .advance(&mut setup, 1, &options(), QUIET)
+        .expect("step 1");
+    assert!(!cost.kept, "{cost:?}");
+    assert_eq!(setup.camera, first);
+    assert_eq!(setup.extent.bounds.1.x, 1.5);
+    // Made from scratch, step 1 would be framed otherwise.
+    let fresh = TimeSteps::new(&path, Default::default())
+        .prepare(Some(1), &options(), QUIET)
+        .expect("step 1 from scratch");
+    assert_ne!(fresh.camera, first);
+}
+
+#[test]
+fn a_bad_field_in_a_later_step_is_an_error_and_changes_nothing() {
+    let path = series("bad", &[(1.0, 1.0, false), (2.0, 1.0, true)]);
+    let mut steps = TimeSteps::new(&path, Default::default());
+    let mut setup = steps.prepare(Some(0), &options(), QUIET).expect("step 0");
+    let before = setup.scene().expect("scene").scalar.clone();
+    let error = steps.advance(&mut setup, 1, &options(), QUIET);
+    let message = tetray_engine::error_chain(&error.expect_err("a NaN is refused"));
+    assert!(message.contains("s1.vtk"), "{message}");
+    assert!(message.to_lowercase().contains("nan"), "{message}");
+    assert_eq!(setup.scene().expect("scene").scalar, before);
+    assert_eq!(setup.extent.range, (0.0, 6.0));
+}
