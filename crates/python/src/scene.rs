@@ -10,7 +10,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use tetray_engine::{
     CameraOptions, Engine, FrameOptions, IntegratorChoice, Log, MeshInput, RendererChoice, Setup,
-    Source, TfSource, WalkOptions,
+    Source, TfSource, TimeSteps, WalkOptions,
 };
 use tetray_integrate::{ColorPoint, Method, OpacityMode, OpacityPoint};
 use tetray_mesh::MeshSummary;
@@ -22,9 +22,15 @@ use crate::{guard, to_py, value_error};
 /// A prepared mesh and renderer.
 #[pyclass(module = "tetray._native", frozen)]
 pub struct Scene {
-    /// Written only by `compare`, which switches integrators.
+    /// Written by `compare`, which switches integrators, and `go_to_step`.
     setup: RwLock<Setup>,
-    engine: Engine,
+    /// Written by `go_to_step`.
+    engine: RwLock<Engine>,
+    /// A file's time steps (none for arrays): `go_to_step` moves through
+    /// them, keeping what the steps share.
+    steps: Option<Mutex<TimeSteps>>,
+    options: FrameOptions,
+    renderer: RendererChoice,
     walk: WalkOptions,
     size: (u32, u32),
     camera: CameraOptions,
@@ -174,27 +180,28 @@ impl Scene {
             max_steps,
             ..WalkOptions::default()
         };
-        let source = match mesh.cast::<Grid>() {
+        let (source, mut steps) = match mesh.cast::<Grid>() {
             Ok(grid) => {
                 let grid = grid.get();
-                Source::Arrays {
+                let source = Source::Arrays {
                     grid: Box::new(grid.grid.clone()),
                     name: grid.name.clone(),
                     format: "Python arrays",
                     linearize,
-                }
+                };
+                (Some(source), None)
             }
             _ => match mesh.extract::<std::path::PathBuf>() {
-                Ok(path) => Source::File {
-                    path,
-                    options: tetray_io::LoadOptions {
+                Ok(path) => {
+                    let load = tetray_io::LoadOptions {
                         plot3d_q: q,
                         time_step,
                         time,
                         block,
                         linearize,
-                    },
-                },
+                    };
+                    (None, Some(TimeSteps::new(path, load)))
+                }
                 _ => {
                     return Err(value_error("mesh must be a path or a tetray._native.Grid"));
                 }
@@ -209,7 +216,12 @@ impl Scene {
                     info: &info,
                     warn: &warn,
                 };
-                let input = tetray_engine::load(source).map_err(to_py)?;
+                let input = match (source, &mut steps) {
+                    (Some(source), _) => tetray_engine::load(source),
+                    (None, Some(steps)) => steps.load(None),
+                    (None, None) => unreachable!("a path or arrays"),
+                }
+                .map_err(to_py)?;
                 let info_of = info_of(&input);
                 let setup =
                     tetray_engine::prepare_mesh(input, None, &options, log).map_err(to_py)?;
@@ -220,7 +232,10 @@ impl Scene {
         let (setup, engine, info) = built?;
         Ok(Scene {
             setup: RwLock::new(setup),
-            engine,
+            engine: RwLock::new(engine),
+            steps: steps.map(Mutex::new),
+            options,
+            renderer,
             walk,
             size,
             camera,
@@ -255,6 +270,8 @@ impl Scene {
             };
             let frame = self
                 .engine
+                .read()
+                .expect("engine lock")
                 .render_watched(&setup, &camera, self.walk, size, None, Some(&cancel))
                 .map_err(to_py)?;
             Ok(frame.image)
@@ -285,6 +302,8 @@ impl Scene {
             }
             let frame = self
                 .engine
+                .read()
+                .expect("engine lock")
                 .render_watched(&setup, &camera, self.walk, self.size, None, Some(&cancel))
                 .map_err(to_py)?;
             Ok(frame.image)
@@ -314,6 +333,8 @@ impl Scene {
                 for _ in 0..frames {
                     let frame = self
                         .engine
+                        .read()
+                        .expect("engine lock")
                         .render(&setup, &camera, self.walk, self.size, None)
                         .map_err(to_py)?;
                     images.push(frame.image);
@@ -374,8 +395,9 @@ impl Scene {
         )?;
         d.set_item("unit_distance", setup.unit_distance)?;
         d.set_item("integrator", setup.method.name())?;
-        d.set_item("renderer", self.engine.name())?;
-        d.set_item("adapter", self.engine.adapter())?;
+        let engine = self.engine.read().expect("engine lock");
+        d.set_item("renderer", engine.name())?;
+        d.set_item("adapter", engine.adapter())?;
         d.set_item("scene_seconds", setup.scene_time.as_secs_f64())?;
         d.set_item("integrator_seconds", setup.integrator_time.as_secs_f64())?;
         Ok(d)
@@ -462,6 +484,64 @@ impl Scene {
                     .and_then(|bundle| tetray_web::page(&bundle, layout))
                     .map_err(|e| value_error(e.to_string()))?;
                 Ok((page.html, page.scene_js))
+            })
+        })
+    }
+
+    /// Moves the scene to the file's time step `step` (0-based), as
+    /// `tetray animate` moves through its steps: when the step's points
+    /// and cells are the ones held, only its fields are read and taken
+    /// (the topology, BVH and GPU upload of the cells stay); otherwise the
+    /// scene is made again, keeping its camera. The colour range follows
+    /// the step's field unless the scene was given `clim`. Returns (load
+    /// seconds, scene seconds, whether the mesh was kept).
+    fn go_to_step(&self, py: Python<'_>, step: usize) -> PyResult<(f64, f64, bool)> {
+        let Some(steps) = &self.steps else {
+            return Err(value_error(
+                "the scene was made from arrays, not a file: it has no time steps",
+            ));
+        };
+        py.detach(|| {
+            guard(|| {
+                let info = |line: String| self.log.lock().expect("log lock").0.push(line);
+                let warn = |line: String| self.log.lock().expect("log lock").1.push(line);
+                let log = Log {
+                    info: &info,
+                    warn: &warn,
+                };
+                let mut steps = steps.lock().expect("steps lock");
+                let mut setup = self.setup.write().expect("setup lock");
+                let mut engine = self.engine.write().expect("engine lock");
+                let cost = steps
+                    .advance(&mut setup, step, &self.options, log)
+                    .map_err(to_py)?;
+                if cost.kept {
+                    engine.take_fields(&setup, &info).map_err(to_py)?;
+                } else {
+                    *engine = Engine::new(self.renderer, &setup, &info).map_err(to_py)?;
+                }
+                Ok((cost.load.as_secs_f64(), cost.scene.as_secs_f64(), cost.kept))
+            })
+        })
+    }
+
+    /// The range of the scene's field over the file's time steps `steps`
+    /// (read, not made into scenes): an animation's colour range. `None`
+    /// for a field constant over them, or a mesh without fields.
+    fn range_over(&self, py: Python<'_>, steps: Vec<usize>) -> PyResult<Option<(f32, f32)>> {
+        let Some(series) = &self.steps else {
+            return Err(value_error(
+                "the scene was made from arrays, not a file: it has no time steps",
+            ));
+        };
+        let field = self.setup.read().expect("setup lock").extent.field.clone();
+        if field == tetray_engine::SOLID {
+            return Ok(None);
+        }
+        py.detach(|| {
+            guard(|| {
+                let series = series.lock().expect("steps lock");
+                series.range(&steps, Some(&field)).map_err(to_py)
             })
         })
     }

@@ -145,9 +145,12 @@ class Scene:
         view-up over the animation (``n_frames`` frames, default 36, when
         there are no steps). The transfer function spans the field over
         every step rendered unless the scene was given ``clim``, so frame k
-        is ``Scene(mesh, ..., time_step=k, clim=(lo, hi)).render()``. Each
-        step is loaded when its frame is made (the range takes one more
-        pass over the steps)."""
+        of a mesh that does not move is ``Scene(mesh, ..., time_step=k,
+        clim=(lo, hi)).render()`` (a moving mesh keeps the first step's
+        view). Each
+        step is read when its frame is made; steps that share their points
+        and cells share one scene, and only their fields are taken (the
+        range takes one more pass over the steps, reading only)."""
         stored = list(self.info["times"])
         if times is None:
             steps = list(range(len(stored))) if len(stored) > 1 else []
@@ -169,19 +172,17 @@ class Scene:
             raise ValueError(f"n_frames: expected 1 or more, got {n_frames}")
         args = dict(self._args, time=None)
         if steps and args.get("clim") is None:
-            field = self.info["field"]
-            lo, hi = float("inf"), float("-inf")
-            for step in steps:
-                fields = Scene(**dict(args, time_step=step)).info["fields"]
-                f = next(f for f in fields if f["name"] == field)
-                lo, hi = min(lo, f["min"]), max(hi, f["max"])
-            if lo < hi:
-                args["clim"] = (lo, hi)
-        scene, current = self, None
+            rng = self._native.range_over(steps)
+            if rng is not None:
+                args["clim"] = rng
+        # One scene for every step: a step whose points and cells are the
+        # ones held brings only its fields (see ``tetray animate``).
+        scene = Scene(**dict(args, time_step=steps[0])) if steps else self
+        current = steps[0] if steps else None
         for i in range(count):
             if steps and steps[i] != current:
                 current = steps[i]
-                scene = Scene(**dict(args, time_step=current))
+                scene._native.go_to_step(current)
             yield scene._native.render_turned(None if orbit is None else float(orbit) * i / count)
 
     def animate(
