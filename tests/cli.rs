@@ -517,3 +517,45 @@ fn an_image_larger_than_memory_is_refused_before_it_is_made() {
     );
     assert!(stderr.contains("TETRAY_MEMORY_LIMIT"), "{stderr}");
 }
+
+/// The same for the VTK readers' image data and rectilinear grids (found
+/// by the `render` fuzz target: a 94-byte legacy file whose DIMENSIONS
+/// claim 22 M points took the time and memory of making them).
+#[test]
+fn vtk_grids_larger_than_memory_are_refused_before_they_are_made() {
+    let dir = support::scratch("cli", "grid-preflight");
+    let files = [
+        (
+            "image.vtk",
+            "# vtk DataFile Version 2.0\nfuzz\nASCII\nDATASET STRUCTURED_POINTS\n\
+             DIMENSIONS 9 491884 5\n",
+            "the grid (9 x 491884 x 5 points)",
+        ),
+        (
+            "image.vti",
+            "<VTKFile type=\"ImageData\" version=\"1.0\"><ImageData WholeExtent=\"0 8 0 491883 0 4\" \
+             Origin=\"0 0 0\" Spacing=\"1 1 1\"><Piece Extent=\"0 8 0 491883 0 4\"></Piece>\
+             </ImageData></VTKFile>\n",
+            "the ImageData (22134780 points, 15740256 cells)",
+        ),
+        (
+            "grid.vtr",
+            "<VTKFile type=\"RectilinearGrid\" version=\"1.0\"><RectilinearGrid WholeExtent=\"0 8 0 491883 0 4\">\
+             <Piece Extent=\"0 8 0 491883 0 4\"></Piece></RectilinearGrid></VTKFile>\n",
+            "the RectilinearGrid (22134780 points, 15740256 cells)",
+        ),
+    ];
+    for (name, content, said) in files {
+        std::fs::write(dir.join(name), content).expect("write");
+        let out = std::process::Command::new(support::BIN)
+            .arg("info")
+            .arg(dir.join(name))
+            .env("TETRAY_MEMORY_LIMIT", (512u64 << 20).to_string())
+            .output()
+            .expect("run tetray");
+        let stderr = text(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{name}: {stderr}");
+        assert!(stderr.contains(said), "{name}: {stderr}");
+        assert!(stderr.contains("TETRAY_MEMORY_LIMIT"), "{name}: {stderr}");
+    }
+}

@@ -13,6 +13,11 @@ pub enum VtkError {
     #[error(transparent)]
     Cell(#[from] CellError),
 
+    /// A grid whose size, from its header alone, needs more memory than
+    /// there is (an image's points and cells are made, not read).
+    #[error(transparent)]
+    Memory(#[from] crate::preflight::MemoryError),
+
     /// The file could not be opened or read.
     #[error("{file}: {source}")]
     Io {

@@ -113,7 +113,15 @@ impl Structured {
             })
         })?;
         let n = point_count(dims, file, &format!("line {line}, DIMENSIONS"))?;
-        Ok((n, cell_count(dims)))
+        let cells = cell_count(dims);
+        // An image's (and a rectilinear grid's) points and cells are made,
+        // not read: nothing in the file bounds them but the memory.
+        crate::preflight::check(
+            file,
+            || format!("the grid ({} x {} x {} points)", dims[0], dims[1], dims[2]),
+            crate::preflight::grid_bytes(n as u64, cells as u64),
+        )?;
+        Ok((n, cells))
     }
 
     /// A STRUCTURED_POINTS dataset's index space (after [`Self::finish`]).

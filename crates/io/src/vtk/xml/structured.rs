@@ -61,6 +61,15 @@ pub(crate) fn read_raw_image(
         piece.ncells = cell_count(dims);
         extents.push(extent);
     }
+    // An image's (and a rectilinear grid's) points and cells are made, not
+    // read: nothing in the file bounds them but the memory.
+    let points: u64 = doc.pieces.iter().map(|p| p.npoints as u64).sum();
+    let cells: u64 = doc.pieces.iter().map(|p| p.ncells as u64).sum();
+    crate::preflight::check(
+        file,
+        || format!("the {dataset} ({points} points, {cells} cells)"),
+        crate::preflight::grid_bytes(points, cells),
+    )?;
     let image = if dataset == "ImageData" {
         Some(ImageFrame::of(&doc.dataset_attributes, file, &element)?)
     } else {
