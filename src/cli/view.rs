@@ -4,7 +4,7 @@
 use std::time::Duration;
 
 use clap::Args;
-use tetray_viewer::ViewerOptions;
+use tetray_viewer::{TimeSeries, ViewerOptions};
 
 use super::args::{IntegratorArgs, MeshArgs, parse_positive};
 use super::scene::{prepare_with, read_tf};
@@ -39,7 +39,13 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
         representation: tetray_engine::Representation::Both,
         ..tetray_engine::FrameOptions::default()
     };
-    let setup = prepare_with(&args.mesh, &options, &|line| println!("{line}"))?;
+    let (setup, series) = match time_series(args, options.clone())? {
+        Some((setup, series)) => (setup, Some(series)),
+        None => (
+            prepare_with(&args.mesh, &options, &|line| println!("{line}"))?,
+            None,
+        ),
+    };
     if setup.image().is_some() {
         println!("image data: the shear-warp renderer is available in the Renderer menu");
     }
@@ -48,7 +54,52 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
         budget: Duration::from_millis(u64::from(args.budget_ms)),
         early_termination: args.early_termination,
     };
-    tetray_viewer::run(setup, options)
+    tetray_viewer::run(setup, options, series)
+}
+
+/// For a file with several time steps: the setup of the step asked for
+/// (`--time-step`, `--time`, else the first) and the steps for the
+/// viewer's time slider, with the colour range over all the steps (unless
+/// `--clim` fixes it), as `tetray animate` makes it.
+fn time_series(
+    args: &ViewArgs,
+    mut options: tetray_engine::FrameOptions,
+) -> anyhow::Result<Option<(tetray_engine::Setup, TimeSeries)>> {
+    let tetray_engine::Source::File {
+        path,
+        options: load,
+    } = args.mesh.source()?
+    else {
+        return Ok(None);
+    };
+    let mut steps = tetray_engine::TimeSteps::new(path, load.clone());
+    let times = steps.times()?;
+    if times.len() < 2 {
+        return Ok(None);
+    }
+    let step = match (load.time_step, load.time) {
+        (Some(step), _) => step,
+        (None, Some(time)) => tetray_io::time::choose_step(&times, None, Some(time))?.unwrap_or(0),
+        (None, None) => 0,
+    };
+    let all: Vec<usize> = (0..times.len()).collect();
+    if options.integrator.range.is_none()
+        && let Some(range) = steps.range(&all, options.integrator.scalar.as_deref())?
+    {
+        println!(
+            "colour range [{}, {}]: the field over the {} time steps",
+            range.0,
+            range.1,
+            times.len()
+        );
+        options.integrator.range = Some(range);
+    }
+    let log = tetray_engine::Log {
+        info: &|line| println!("{line}"),
+        warn: &super::scene::warn,
+    };
+    let setup = steps.prepare(Some(step), &options, log)?;
+    Ok(Some((setup, TimeSeries::new(steps, options, times, step))))
 }
 
 fn parse_image_scale(text: &str) -> Result<f32, String> {

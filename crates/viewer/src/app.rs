@@ -20,7 +20,7 @@ use crate::projection::ProjectRenderer;
 use crate::tf_editor::TfEditor;
 
 /// Histogram bins under the opacity curve.
-const HISTOGRAM_BINS: usize = 128;
+pub(crate) const HISTOGRAM_BINS: usize = 128;
 
 /// How the viewer starts (the field, transfer function, integrator, unit
 /// distance and opacity mode are the [`Setup`]'s).
@@ -78,6 +78,8 @@ pub struct ViewerApp {
     /// Display frame interval while frames are being made (ms, smoothed).
     pub(crate) ui_ms: Option<f64>,
     last_frame: Option<Instant>,
+    /// The data's time steps, when it has several.
+    pub(crate) time: Option<crate::time::TimeSeries>,
 }
 
 impl ViewerApp {
@@ -141,6 +143,7 @@ impl ViewerApp {
             screenshot_message: None,
             ui_ms: None,
             last_frame: None,
+            time: None,
         };
         app.rebuild_integrators()?;
         Ok(app)
@@ -234,6 +237,13 @@ impl ViewerApp {
         editor.rescale = self.tf_editor.rescale;
         self.tf_editor = editor;
         self.rebuild_integrators()
+    }
+
+    /// Drops what was made from the scene's values besides the ray
+    /// caster's upload (the projection's upload, shear-warp's grids).
+    pub(crate) fn drop_derived(&mut self) {
+        self.projection = None;
+        self.shear_warp = None;
     }
 
     /// Applies settings changed in the panel since the integrators were made.

@@ -46,6 +46,14 @@ impl GpuRenderer {
         Ok(())
     }
 
+    /// Writes the points' scalars of `scene`, another time step of the
+    /// uploaded mesh, over the upload.
+    pub fn write_points(&mut self, scene: &Scene) -> anyhow::Result<()> {
+        self.scene
+            .write_points(&self.ctx, scene)
+            .context("writing the time step's field")
+    }
+
     pub fn tet_count(&self) -> usize {
         self.scene.tet_count()
     }

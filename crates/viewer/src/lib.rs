@@ -22,11 +22,13 @@ pub mod present;
 pub mod projection;
 mod screenshot;
 pub mod tf_editor;
+mod time;
 mod window;
 
 use std::sync::Arc;
 
 pub use app::{ViewerApp, ViewerOptions};
+pub use time::TimeSeries;
 
 /// Default window size (points).
 pub const WINDOW_SIZE: [f32; 2] = [1280.0, 800.0];
@@ -65,8 +67,13 @@ pub fn wgpu_setup() -> egui_wgpu::WgpuSetup {
 
 /// Opens the viewer window on `setup` (made by the engine, with the
 /// regular grid of image data for shear-warp: `Representation::Both`) and
-/// returns when it is closed.
-pub fn run(setup: tetray_engine::Setup, options: ViewerOptions) -> anyhow::Result<()> {
+/// returns when it is closed; `series`, the data's time steps, gives it a
+/// time slider.
+pub fn run(
+    setup: tetray_engine::Setup,
+    options: ViewerOptions,
+    series: Option<TimeSeries>,
+) -> anyhow::Result<()> {
     let title = format!("tetray view - {}", setup.name());
     let native = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
@@ -83,7 +90,10 @@ pub fn run(setup: tetray_engine::Setup, options: ViewerOptions) -> anyhow::Resul
         &title,
         native,
         Box::new(move |cc| {
-            let app = ViewerApp::new(cc, setup, options)?;
+            let mut app = ViewerApp::new(cc, setup, options)?;
+            if let Some(series) = series {
+                app.set_time_series(series);
+            }
             Ok(Box::new(app))
         }),
     )

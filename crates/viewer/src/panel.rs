@@ -20,6 +20,11 @@ pub fn controls(app: &mut ViewerApp, ui: &mut Ui) -> bool {
     if let Some(error) = &app.error {
         ui.colored_label(ui.visuals().error_fg_color, format!("error: {error}"));
     }
+    if app.time.is_some() {
+        egui::CollapsingHeader::new("Time")
+            .default_open(true)
+            .show(ui, |ui| crate::time::controls(app, ui));
+    }
     egui::CollapsingHeader::new("Rendering")
         .default_open(true)
         .show(ui, |ui| rendering(app, ui));

@@ -44,6 +44,16 @@ impl TfEditor {
         }
     }
 
+    /// The data range the editor's axis spans.
+    pub fn range(&self) -> (f32, f32) {
+        self.range
+    }
+
+    /// The histogram under the opacity curve (another time step's field).
+    pub fn set_histogram(&mut self, histogram: Vec<u32>) {
+        self.histogram = histogram;
+    }
+
     /// The edited function (the editor keeps it valid: points stay
     /// ordered, opacities in [0, 1], colours non-negative).
     pub fn transfer_function(&self) -> anyhow::Result<TransferFunction> {

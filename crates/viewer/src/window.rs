@@ -137,5 +137,9 @@ impl eframe::App for ViewerApp {
         egui::CentralPanel::default()
             .frame(egui::Frame::NONE)
             .show(ui, |ui| self.view(ui));
+        // Playing: the next step once this one's frame is finished.
+        if let Some(due) = self.play(self.is_idle()) {
+            ui.ctx().request_repaint_after(due);
+        }
     }
 }

@@ -1,0 +1,128 @@
+//! The viewer's time steps: a step of the same mesh shows exactly what a
+//! viewer started on that step shows (the same colour range, camera and
+//! transfer function; only the field written over the upload), the steps
+//! differ, and playing moves to the next step once a frame is finished.
+
+mod support;
+
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use support::{difference, displayed, gpu_or_skip, harness_on, options, run_until_idle};
+use tetray_engine::{FrameOptions, Log, Representation, Setup, TimeSteps};
+use tetray_viewer::TimeSeries;
+
+/// Legacy VTK: a unit cube of 6 tetrahedra, f = scale * (x + 2y + 3z).
+fn write_step(path: &Path, scale: f32) {
+    let mut s = String::from(
+        "# vtk DataFile Version 3.0\nstep\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 8 float\n",
+    );
+    let corner = |i: usize| [(i & 1) as f32, ((i >> 1) & 1) as f32, ((i >> 2) & 1) as f32];
+    for i in 0..8 {
+        let c = corner(i);
+        s.push_str(&format!("{} {} {}\n", c[0], c[1], c[2]));
+    }
+    s.push_str("CELLS 6 30\n");
+    for t in [
+        [0, 1, 3, 7],
+        [0, 1, 5, 7],
+        [0, 2, 3, 7],
+        [0, 2, 6, 7],
+        [0, 4, 5, 7],
+        [0, 4, 6, 7],
+    ] {
+        s.push_str(&format!("4 {} {} {} {}\n", t[0], t[1], t[2], t[3]));
+    }
+    s.push_str("CELL_TYPES 6\n10\n10\n10\n10\n10\n10\n");
+    s.push_str("POINT_DATA 8\nSCALARS f float\nLOOKUP_TABLE default\n");
+    for i in 0..8 {
+        let c = corner(i);
+        s.push_str(&format!("{}\n", scale * (c[0] + 2.0 * c[1] + 3.0 * c[2])));
+    }
+    std::fs::write(path, s).expect("write a step");
+}
+
+fn series(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("tetray-viewer-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("scratch folder");
+    for k in 0..3 {
+        write_step(&dir.join(format!("s{k}.vtk")), (k + 1) as f32);
+    }
+    let path = dir.join("run.series");
+    std::fs::write(
+        &path,
+        r#"{"file-series-version": "1.0", "files": [{"name": "s0.vtk", "time": 0},
+            {"name": "s1.vtk", "time": 0.5}, {"name": "s2.vtk", "time": 1}]}"#,
+    )
+    .expect("write the series");
+    path
+}
+
+/// As `tetray view` makes them: the colour range over the three steps.
+fn frame_options() -> FrameOptions {
+    let mut options = FrameOptions {
+        size: (64, 64),
+        representation: Representation::Both,
+        ..FrameOptions::default()
+    };
+    options.integrator.range = Some((0.0, 18.0));
+    options
+}
+
+fn setup_at(path: &Path, step: usize) -> (Setup, TimeSeries) {
+    let mut steps = TimeSteps::new(path, Default::default());
+    let times = steps.times().expect("times");
+    let setup = steps
+        .prepare(Some(step), &frame_options(), Log::quiet())
+        .expect("the setup");
+    (setup, TimeSeries::new(steps, frame_options(), times, step))
+}
+
+#[test]
+fn a_step_shows_what_a_viewer_started_on_it_shows() {
+    if !gpu_or_skip() {
+        return;
+    }
+    let path = series("step");
+    let (setup, series) = setup_at(&path, 0);
+    let mut harness = harness_on(setup, options());
+    harness.state_mut().set_time_series(series);
+    run_until_idle(&mut harness);
+    let first = displayed(&harness);
+    harness.state_mut().go_to_step(2).expect("step 2");
+    assert_eq!(harness.state().time_step(), Some(2));
+    run_until_idle(&mut harness);
+    let moved = displayed(&harness);
+
+    let (setup, series) = setup_at(&path, 2);
+    let mut fresh = harness_on(setup, options());
+    fresh.state_mut().set_time_series(series);
+    run_until_idle(&mut fresh);
+    // The same device, kernel and inputs: bit for bit.
+    assert_eq!(difference(&moved, &displayed(&fresh), 0), (0, 0));
+    let (worst, _) = difference(&first, &moved, 0);
+    assert!(worst > 8, "the steps look alike: {worst}");
+    assert!(harness.state_mut().go_to_step(3).is_err());
+}
+
+#[test]
+fn playing_moves_to_the_next_step_once_the_frame_is_finished() {
+    if !gpu_or_skip() {
+        return;
+    }
+    let (setup, series) = setup_at(&series("play"), 0);
+    let mut harness = harness_on(setup, options());
+    harness.state_mut().set_time_series(series);
+    run_until_idle(&mut harness);
+    harness.state_mut().set_playing(true);
+    let start = Instant::now();
+    while harness.state().time_step() == Some(0) {
+        assert!(
+            start.elapsed() < Duration::from_secs(60),
+            "no step in a minute"
+        );
+        harness.step();
+    }
+    assert_eq!(harness.state().time_step(), Some(1));
+    assert_eq!(harness.state().error, None);
+}
