@@ -80,6 +80,7 @@ pub struct ViewerApp {
     last_frame: Option<Instant>,
     /// The data's time steps, when it has several.
     pub(crate) time: Option<crate::time::TimeSeries>,
+    pub(crate) recorder: crate::record::RecordPanel,
 }
 
 impl ViewerApp {
@@ -144,6 +145,7 @@ impl ViewerApp {
             ui_ms: None,
             last_frame: None,
             time: None,
+            recorder: crate::record::RecordPanel::default(),
         };
         app.rebuild_integrators()?;
         Ok(app)

@@ -20,6 +20,7 @@ pub mod pacing;
 mod panel;
 pub mod present;
 pub mod projection;
+mod record;
 mod screenshot;
 pub mod tf_editor;
 mod time;
@@ -28,6 +29,7 @@ mod window;
 use std::sync::Arc;
 
 pub use app::{ViewerApp, ViewerOptions};
+pub use record::Recording;
 pub use time::TimeSeries;
 
 /// Default window size (points).

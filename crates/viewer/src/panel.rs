@@ -43,6 +43,9 @@ pub fn controls(app: &mut ViewerApp, ui: &mut Ui) -> bool {
     egui::CollapsingHeader::new("Screenshot")
         .default_open(false)
         .show(ui, |ui| screenshot(app, ui));
+    egui::CollapsingHeader::new("Record")
+        .default_open(false)
+        .show(ui, |ui| crate::record::controls(app, ui));
     tf_changed
 }
 

@@ -74,9 +74,9 @@ impl ViewerApp {
     }
 
     /// Shows time step `step`: its fields over the held mesh, or the step
-    /// made anew when its mesh differs; the transfer function and camera
-    /// stay.
-    pub fn go_to_step(&mut self, step: usize) -> anyhow::Result<()> {
+    /// made anew when its mesh differs (then `false`); the transfer
+    /// function and camera stay.
+    pub fn go_to_step(&mut self, step: usize) -> anyhow::Result<bool> {
         let series = self.time.as_mut().context("the data has no time steps")?;
         if step >= series.len() {
             anyhow::bail!(
@@ -102,7 +102,7 @@ impl ViewerApp {
             HISTOGRAM_BINS,
         ));
         self.generation += 1;
-        Ok(())
+        Ok(cost.kept)
     }
 
     /// While playing, moves to the next step once the frame is finished

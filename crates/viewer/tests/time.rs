@@ -126,3 +126,70 @@ fn playing_moves_to_the_next_step_once_the_frame_is_finished() {
     assert_eq!(harness.state().time_step(), Some(1));
     assert_eq!(harness.state().error, None);
 }
+
+/// Recording the time steps writes one frame per step with `tetray
+/// animate`'s writer: each frame is the engine's GPU render of that step
+/// from the viewer's camera at the view's size, written by the same
+/// writer; the viewer is back on its step afterwards. An orbit records
+/// the frames asked for.
+#[test]
+fn recording_writes_each_step_as_the_engine_renders_it() {
+    if !gpu_or_skip() {
+        return;
+    }
+    let path = series("record");
+    let (setup, series) = setup_at(&path, 1);
+    let mut harness = harness_on(setup, options());
+    harness.state_mut().set_time_series(series);
+    run_until_idle(&mut harness);
+    let dir = path.with_file_name("recorded/");
+    let app = harness.state_mut();
+    let frames = app
+        .record(&dir, tetray_viewer::Recording::TimeSteps, 10)
+        .expect("record the steps");
+    assert_eq!(frames, 3);
+    assert_eq!(app.time_step(), Some(1));
+    let camera = app.camera().expect("camera");
+    let (w, h, _) = app.displayed_image().expect("display");
+    let reference = path.with_file_name("reference/");
+    let mut movie =
+        tetray_core::Movie::create(&reference, (w, h), 10, glam::Vec3::ZERO).expect("writer");
+    for step in 0..3 {
+        let (setup, _) = setup_at(&path, step);
+        let engine =
+            tetray_engine::Engine::new(tetray_engine::RendererChoice::Gpu, &setup, &|_| {})
+                .expect("engine");
+        let frame = engine
+            .render(
+                &setup,
+                &camera,
+                tetray_engine::WalkOptions::default(),
+                (w, h),
+                None,
+            )
+            .expect("render");
+        movie.add(&frame.image).expect("add");
+    }
+    movie.finish().expect("finish");
+    for step in 0..3 {
+        let name = format!("frame_{step:04}.png");
+        let a = image::open(dir.join(&name)).expect("recorded").to_rgba8();
+        let b = image::open(reference.join(&name))
+            .expect("reference")
+            .to_rgba8();
+        assert_eq!(difference(&a, &b, 0), (0, 0), "step {step}");
+    }
+    let orbit = path.with_file_name("orbit.gif");
+    let recording = tetray_viewer::Recording::Orbit {
+        degrees: 90.0,
+        frames: 4,
+    };
+    assert_eq!(
+        harness
+            .state_mut()
+            .record(&orbit, recording, 10)
+            .expect("orbit"),
+        4
+    );
+    assert!(std::fs::metadata(&orbit).expect("the GIF").len() > 0);
+}
