@@ -312,3 +312,53 @@ fn a_moving_mesh_is_made_anew() {
         rgb(&dir.join("frames/frame_0001.png"))
     );
 }
+
+/// Real time series: the crushed can (VTKHDF files whose points move, so
+/// each step is made anew from the first step's view) and an Exodus file
+/// with three steps (netCDF-4; the steps share the mesh, so the later ones
+/// keep it) animate to MP4; ffprobe reads back one frame per step at the
+/// size asked.
+#[test]
+fn real_time_series_animate_to_mp4() {
+    let dir = scratch("animate", "real");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let cases = [
+        ("data/real/series/can/can.hdf.series", "EQPS", "can.mp4", 0),
+        ("data/exodus/tet_wedge_netcdf4.exo", "", "exodus.mp4", 2),
+    ];
+    for (file, scalar, out, kept) in cases {
+        let path = root.join(file);
+        let mut args = vec![
+            "animate",
+            path.to_str().expect("UTF-8"),
+            "-o",
+            out,
+            "--renderer",
+            "cpu",
+            "--size",
+            SIZE,
+        ];
+        if !scalar.is_empty() {
+            args.extend(["--scalar", scalar]);
+        }
+        let stdout = ok(&dir, &args);
+        assert_eq!(
+            stdout.matches("scene kept").count(),
+            kept,
+            "{file}: {stdout}"
+        );
+        let probe = std::process::Command::new("ffprobe")
+            .args(["-v", "error", "-count_frames", "-select_streams", "v:0"])
+            .args([
+                "-show_entries",
+                "stream=nb_read_frames,width,height",
+                "-of",
+                "csv=p=0",
+            ])
+            .arg(dir.join(out))
+            .output()
+            .expect("ffprobe (apt-get install ffmpeg; tools/system-deps installs it)");
+        assert!(probe.status.success(), "{}", text(&probe.stderr));
+        assert_eq!(text(&probe.stdout).trim(), "40,32,3", "{file}");
+    }
+}

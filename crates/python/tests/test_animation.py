@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 import tetray
-from conftest import run_cli
+from conftest import DATA, REPO, run_cli
 
 SIZE = (40, 32)
 
@@ -109,3 +109,34 @@ def test_animation_shows_inline_as_the_file_animate_writes(tmp_path):
     assert shown.save(tmp_path / "saved.gif").read_bytes() == shown.data
     with pytest.raises(ValueError, match="format"):
         scene.animation(format="avi")
+
+
+@pytest.mark.parametrize(
+    "path, scalars",
+    [(DATA / "series" / "can" / "can.hdf.series", "EQPS"), (REPO / "data" / "exodus" / "tet_wedge_netcdf4.exo", None)],
+    ids=["crushed can (points move)", "exodus (mesh shared)"],
+)
+def test_real_series_animate_as_the_cli_does(tmp_path, tetray_bin, path, scalars):
+    """The crushed can (its points move between steps) and an Exodus file
+    with three steps: ``frames`` gives the frames ``tetray animate`` writes,
+    and ``animate`` writes an MP4 of one frame per step."""
+    from PIL import Image
+
+    scene = tetray.Scene(path, size=SIZE, renderer="cpu", scalars=scalars)
+    frames = list(scene.frames())
+    assert len(frames) == 3
+    flags = ["--scalar", scalars] if scalars else []
+    run_cli(tetray_bin, ["animate", path, "-o", f"{tmp_path}/cli/", "--renderer", "cpu",
+                         "--size", f"{SIZE[0]}x{SIZE[1]}", *flags])
+    for k, frame in enumerate(frames):
+        cli = np.asarray(Image.open(tmp_path / "cli" / f"frame_{k:04d}.png").convert("RGB"))
+        assert np.array_equal(tetray.to_rgb8(frame), cli), f"step {k}"
+    assert scene.animate(tmp_path / "run.mp4", fps=5) == 3
+    import subprocess
+
+    probe = subprocess.run(
+        ["ffprobe", "-v", "error", "-count_frames", "-select_streams", "v:0", "-show_entries",
+         "stream=nb_read_frames,width,height", "-of", "csv=p=0", str(tmp_path / "run.mp4")],
+        capture_output=True, text=True, check=True,
+    )
+    assert probe.stdout.strip() == f"{SIZE[0]},{SIZE[1]},3"
