@@ -559,3 +559,22 @@ fn vtk_grids_larger_than_memory_are_refused_before_they_are_made() {
         assert!(stderr.contains("TETRAY_MEMORY_LIMIT"), "{name}: {stderr}");
     }
 }
+
+/// Found by the `hdf5_formats` fuzz target: an image of long thin cells
+/// (11012 x 3 x 2 points, spacing 1.5e-4 x 0.25 x 1) whose conformity
+/// check visited most boundary faces for every point (90 s for 22 k
+/// cells; the face tree's splits now separate such faces, see
+/// `tetray_mesh::conform`'s test, which counts the visits). It loads, whole.
+#[test]
+fn an_image_of_thin_cells_loads() {
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/fuzz/vtkhdf-thin-image.vtkhdf");
+    let out = std::process::Command::new(support::BIN)
+        .args(["info", "--json"])
+        .arg(&file)
+        .output()
+        .expect("run tetray");
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let info: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    assert_eq!(info["points"], 66072, "{info}");
+    assert_eq!(info["tets"], 132132, "{info}");
+}
