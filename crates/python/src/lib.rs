@@ -10,6 +10,7 @@
 //! GIL released ([`Python::detach`]) and under [`guard`], which turns a
 //! panic into a `RuntimeError` rather than unwinding into the interpreter.
 
+mod convert;
 mod extras;
 mod grid;
 mod interrupt;
