@@ -121,6 +121,7 @@ pub fn run(args: &AnimateArgs) -> anyhow::Result<()> {
         load: setup.load_time,
         scene: setup.scene_time,
         kept: false,
+        topology_kept: false,
     };
 
     let bar = ProgressBar::with_draw_target(Some(count as u64), ProgressDrawTarget::stderr());
@@ -154,7 +155,11 @@ pub fn run(args: &AnimateArgs) -> anyhow::Result<()> {
         if let (true, Some(step)) = (loaded, step) {
             // What each step costs: its file, its scene (kept from the step
             // before when the cells and points are the same), its frame.
-            let scene = if cost.kept { "scene kept" } else { "scene" };
+            let scene = match (cost.kept, cost.topology_kept) {
+                (true, _) => "scene kept",
+                (false, true) => "scene (topology kept)",
+                (false, false) => "scene",
+            };
             bar.suspend(|| {
                 println!(
                     "step {step}: load {:.3} s, {scene} {:.3} s, integrator {:.3} s, frame {:.3} s",

@@ -4,15 +4,16 @@
 //! the setup was made from, bit for bit as read, only its fields are
 //! taken ([`Setup::take_fields`]): no topology, no BVH, no walk records,
 //! and under a fixed colour range no integrator. A step whose mesh
-//! differs (moving points, new cells) is made from scratch, keeping the
-//! camera, so that the view holds still over the animation.
+//! differs is made anew, keeping the camera, so that the view holds still
+//! over the animation; when only its points moved, it takes the topology
+//! of the step before (from the second such step on).
 
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use glam::{DVec3, Vec3};
 use tetray_io::LoadOptions;
-use tetray_mesh::{MeshRead, default_field, finish, value_range};
+use tetray_mesh::{KnownTopology, MeshRead, default_field, finish_reusing, value_range};
 
 use crate::error::{EngineError, bail};
 use crate::options::{FrameOptions, Log, Representation};
@@ -26,6 +27,10 @@ pub struct TimeSteps {
     options: LoadOptions,
     /// The step the last setup was made from, as read.
     held: Option<Geometry>,
+    /// Once a step's points have moved over the same cells: the last
+    /// step's finished tetrahedra and topology, which the next such step
+    /// takes instead of building its own.
+    known: Option<KnownTopology>,
 }
 
 /// What a step's setup cost to make.
@@ -38,6 +43,9 @@ pub struct StepCost {
     pub scene: Duration,
     /// Whether the setup before was kept and only the fields taken.
     pub kept: bool,
+    /// For a step made anew: whether its points moved over the same
+    /// tetrahedra, whose topology it took from the step before.
+    pub topology_kept: bool,
 }
 
 /// A step's mesh as read, before anything is left out or oriented: what
@@ -59,11 +67,15 @@ impl Geometry {
         }
     }
 
+    /// The same cells (the points may differ).
+    fn has_cells_of(&self, read: &MeshRead) -> bool {
+        self.tets == read.mesh.tets && self.tet_cells == read.tet_cells
+    }
+
     fn is_of(&self, read: &MeshRead) -> bool {
         let bits = |p: &Vec3| p.to_array().map(f32::to_bits);
         self.origin.to_array().map(f64::to_bits) == read.origin.to_array().map(f64::to_bits)
-            && self.tets == read.mesh.tets
-            && self.tet_cells == read.tet_cells
+            && self.has_cells_of(read)
             && self.points.len() == read.mesh.points.len()
             && self
                 .points
@@ -81,6 +93,7 @@ impl TimeSteps {
             path: path.into(),
             options,
             held: None,
+            known: None,
         }
     }
 
@@ -102,6 +115,7 @@ impl TimeSteps {
         log: Log<'_>,
     ) -> Result<Setup, EngineError> {
         self.held = None;
+        self.known = None;
         let grid = match options.representation {
             Representation::Tetrahedra => false,
             Representation::Grid => true,
@@ -125,8 +139,9 @@ impl TimeSteps {
     pub fn load(&mut self, step: Option<usize>) -> Result<MeshInput, EngineError> {
         let start = Instant::now();
         self.held = None;
+        self.known = None;
         let read = self.read(step)?;
-        self.input(read, start)
+        self.input(read, start).map(|(input, _)| input)
     }
 
     /// Moves `setup` (made by [`TimeSteps::prepare`] or this) to `step`:
@@ -159,9 +174,13 @@ impl TimeSteps {
             return Ok(cost(setup, true));
         }
         let camera = setup.camera;
-        *setup = prepare_mesh(self.input(read, start)?, None, options, log)?;
+        let (input, topology_kept) = self.input(read, start)?;
+        *setup = prepare_mesh(input, None, options, log)?;
         setup.camera = camera;
-        Ok(cost(setup, false))
+        Ok(StepCost {
+            topology_kept,
+            ..cost(setup, false)
+        })
     }
 
     /// The range of the field `name` (default: the one the first step
@@ -206,16 +225,30 @@ impl TimeSteps {
         Ok(tetray_io::read_file(&self.path, &self.step_options(step))?)
     }
 
-    fn input(&mut self, read: MeshRead, start: Instant) -> Result<MeshInput, EngineError> {
-        let geometry = (read.times.len() > 1).then(|| Geometry::of(&read));
+    /// The input of `read`, with the topology of the step before when its
+    /// points moved over the same cells (then `true`).
+    fn input(&mut self, read: MeshRead, start: Instant) -> Result<(MeshInput, bool), EngineError> {
+        let several = read.times.len() > 1;
+        let moved = self.held.as_ref().is_some_and(|h| h.has_cells_of(&read));
+        let geometry = several.then(|| Geometry::of(&read));
         let file = self.path.display().to_string();
-        let loaded = finish(read).map_err(|e| tetray_io::IoError::from(e.in_file(&file)))?;
+        let known = self.known.take().filter(|_| moved);
+        let loaded = finish_reusing(read, known.as_ref())
+            .map_err(|e| tetray_io::IoError::from(e.in_file(&file)))?;
+        let topology_kept = known.is_some_and(|k| k.tets == loaded.mesh.tets);
+        // Kept only once points have moved over the same cells: a series
+        // whose steps share their mesh never needs it.
+        self.known = (several && moved).then(|| KnownTopology {
+            tets: loaded.mesh.tets.clone(),
+            topology: loaded.topology.clone(),
+        });
         self.held = geometry;
-        Ok(MeshInput {
+        let input = MeshInput {
             name: file,
             loaded,
             load_time: start.elapsed(),
-        })
+        };
+        Ok((input, topology_kept))
     }
 }
 
@@ -224,5 +257,6 @@ fn cost(setup: &Setup, kept: bool) -> StepCost {
         load: setup.load_time,
         scene: setup.scene_time,
         kept,
+        topology_kept: false,
     }
 }

@@ -145,3 +145,35 @@ fn a_bad_field_in_a_later_step_is_an_error_and_changes_nothing() {
     assert_eq!(setup.scene().expect("scene").scalar, before);
     assert_eq!(setup.extent.range, (0.0, 6.0));
 }
+
+/// Points that move over the same cells: the first such step builds its
+/// topology, the next takes it from the step before, and the setup it
+/// makes is the one made from scratch for that step (same tetrahedra,
+/// neighbours, boundary faces, field), from the first step's view.
+#[test]
+fn moving_points_take_the_topology_of_the_step_before() {
+    let path = series(
+        "topology",
+        &[(1.0, 1.0, false), (1.0, 1.5, false), (1.0, 2.0, false)],
+    );
+    let mut steps = TimeSteps::new(&path, Default::default());
+    let mut setup = steps.prepare(Some(0), &options(), QUIET).expect("step 0");
+    let first = setup.camera;
+    let one = steps
+        .advance(&mut setup, 1, &options(), QUIET)
+        .expect("step 1");
+    assert!(!one.kept && !one.topology_kept, "{one:?}");
+    let two = steps
+        .advance(&mut setup, 2, &options(), QUIET)
+        .expect("step 2");
+    assert!(!two.kept && two.topology_kept, "{two:?}");
+    assert_eq!(setup.camera, first);
+    let fresh = TimeSteps::new(&path, Default::default())
+        .prepare(Some(2), &options(), QUIET)
+        .expect("step 2 from scratch");
+    let (a, b) = (setup.scene().expect("scene"), fresh.scene().expect("scene"));
+    assert_eq!(a.mesh.tets, b.mesh.tets);
+    assert_eq!(a.topology, b.topology);
+    assert_eq!(a.point_records(), b.point_records());
+    assert_eq!(setup.extent, fresh.extent);
+}

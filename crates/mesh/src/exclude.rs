@@ -93,6 +93,16 @@ enum Reason {
     NonManifold,
 }
 
+/// The tetrahedra a mesh was left with (after what could not be walked
+/// was left out, oriented) and their topology: another time step with the
+/// same tetrahedra (moved points) takes the topology instead of building
+/// it (see [`crate::finish_reusing`]).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct KnownTopology {
+    pub tets: Vec<[u32; 4]>,
+    pub topology: Topology,
+}
+
 /// Leaves out of `mesh` what cannot be walked (see the module docs),
 /// orients the rest and builds its topology. `tet_cells` gives each
 /// tetrahedron's cell; empty when each tetrahedron is its own cell.
@@ -104,6 +114,7 @@ enum Reason {
 pub(crate) fn exclude_bad_cells(
     mesh: &mut TetMesh,
     tet_cells: &[u32],
+    previous: Option<&KnownTopology>,
 ) -> Result<(Topology, ExcludedCells, usize), MeshError> {
     let n = mesh.tets.len();
     // Kept tetrahedra are listed by u32 index below.
@@ -160,7 +171,13 @@ pub(crate) fn exclude_bad_cells(
         }
         mesh.tets = original.par_iter().map(|&t| given[t as usize]).collect();
         reoriented = mesh.orient();
-        let topology = match Topology::build(mesh) {
+        // The topology is of the indices alone: tetrahedra kept and
+        // oriented as another time step's have its topology.
+        let built = match previous {
+            Some(known) if known.tets == mesh.tets => Ok(known.topology.clone()),
+            _ => Topology::build(mesh),
+        };
+        let topology = match built {
             Ok(topology) => topology,
             Err(MeshError::NonManifoldFace { tets, .. }) => {
                 for t in tets {

@@ -39,12 +39,12 @@ pub mod structured;
 pub mod synthetic;
 
 pub use error::MeshError;
-pub use exclude::ExcludedCells;
+pub use exclude::{ExcludedCells, KnownTopology};
 pub use geometry::{
     DEGENERATE_HEIGHT_ULPS, TetShape, bounds_f64, centring_origin, tet_shape, tet_volume6,
 };
 pub use info::{FieldRange, MeshSummary};
-pub use loaded::{ElementBlock, LoadReport, LoadedMesh, MeshRead, finish, prepare};
+pub use loaded::{ElementBlock, LoadReport, LoadedMesh, MeshRead, finish, finish_reusing, prepare};
 pub use scale::{
     default_field, default_field_of, mean_chord, mean_tet_chord, paraview_unit_distance,
     tet_chord_sum, value_range,

@@ -8,7 +8,7 @@
 use glam::DVec3;
 
 use crate::cells::{PieceCounts, SubdividedCells};
-use crate::exclude::{ExcludedCells, exclude_bad_cells};
+use crate::exclude::{ExcludedCells, KnownTopology, exclude_bad_cells};
 use crate::validate::{check_input, walkable_report};
 use crate::{MeshError, TetMesh, Topology, ValidationReport};
 
@@ -179,9 +179,24 @@ pub struct ElementBlock {
 /// # Errors
 /// The first validation error (see [`crate::validate`]); wrap it with
 /// [`MeshError::in_file`] to name the file.
-pub fn finish(mut read: MeshRead) -> Result<LoadedMesh, MeshError> {
+pub fn finish(read: MeshRead) -> Result<LoadedMesh, MeshError> {
+    finish_reusing(read, None)
+}
+
+/// [`finish`] for another time step of a mesh whose finished tetrahedra
+/// and topology are `previous`: when this step's tetrahedra come out the
+/// same (kept and oriented alike; its points may move), the topology is
+/// taken, not built. The result is [`finish`]'s.
+///
+/// # Errors
+/// As [`finish`].
+pub fn finish_reusing(
+    mut read: MeshRead,
+    previous: Option<&KnownTopology>,
+) -> Result<LoadedMesh, MeshError> {
     check_input(&read.mesh)?;
-    let (topology, excluded, reoriented) = exclude_bad_cells(&mut read.mesh, &read.tet_cells)?;
+    let (topology, excluded, reoriented) =
+        exclude_bad_cells(&mut read.mesh, &read.tet_cells, previous)?;
     read.inverted_fixed += reoriented;
     // Exclusion left only walkable tetrahedra: the findings, no re-check.
     let validation = walkable_report(&read.mesh, &topology);
