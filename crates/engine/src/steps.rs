@@ -12,6 +12,7 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use glam::{DVec3, Vec3};
+use tetray_core::Camera;
 use tetray_io::LoadOptions;
 use tetray_mesh::{KnownTopology, MeshRead, default_field, finish_reusing, value_range};
 
@@ -155,10 +156,11 @@ impl TimeSteps {
         log: Log<'_>,
     ) -> Result<StepCost, EngineError> {
         let start = Instant::now();
+        let options = &same_view_options(setup, options);
         if self.held.is_none() {
-            let camera = setup.camera;
+            let before = View::of(setup);
             *setup = self.prepare(Some(step), options, log)?;
-            setup.camera = camera;
+            before.keep(setup);
             return Ok(cost(setup, false));
         }
         let read = self.read(Some(step))?;
@@ -173,10 +175,10 @@ impl TimeSteps {
             setup.scene_time = start.elapsed();
             return Ok(cost(setup, true));
         }
-        let camera = setup.camera;
+        let before = View::of(setup);
         let (input, topology_kept) = self.input(read, start)?;
         *setup = prepare_mesh(input, None, options, log)?;
-        setup.camera = camera;
+        before.keep(setup);
         Ok(StepCost {
             topology_kept,
             ..cost(setup, false)
@@ -249,6 +251,44 @@ impl TimeSteps {
             load_time: start.elapsed(),
         };
         Ok((input, topology_kept))
+    }
+}
+
+/// `options` with the opacity unit distance of `setup` (the first step's
+/// default when none was given): a step made anew keeps it, as it keeps the
+/// colour range, so that opacity means the same in every frame.
+fn same_view_options(setup: &Setup, options: &FrameOptions) -> FrameOptions {
+    let mut options = options.clone();
+    options
+        .integrator
+        .unit_distance
+        .get_or_insert(setup.unit_distance);
+    options
+}
+
+/// The camera of a setup, in the file's coordinates.
+struct View {
+    camera: Camera,
+    origin: DVec3,
+}
+
+impl View {
+    fn of(setup: &Setup) -> View {
+        View {
+            camera: setup.camera,
+            origin: setup.extent.origin,
+        }
+    }
+
+    /// Puts the camera in `setup`, moved to its origin (a moving mesh far
+    /// from the file's origin is stored relative to each step's centre).
+    fn keep(self, setup: &mut Setup) {
+        let shift = (self.origin - setup.extent.origin).as_vec3();
+        setup.camera = Camera {
+            position: self.camera.position + shift,
+            focal_point: self.camera.focal_point + shift,
+            ..self.camera
+        };
     }
 }
 

@@ -11,6 +11,11 @@ use tetray_engine::{FrameOptions, Log, TimeSteps};
 /// Legacy VTK unstructured grid: a unit cube of 6 tetrahedra (points
 /// stretched along x by `stretch`), the field f = scale * (x + 2y + 3z).
 fn write_step(path: &Path, scale: f32, stretch: f32, bad: bool) {
+    write_step_at(path, scale, stretch, bad, 0.0);
+}
+
+/// [`write_step`] with the cube moved `offset` along x.
+fn write_step_at(path: &Path, scale: f32, stretch: f32, bad: bool, offset: f64) {
     let corners: Vec<[f32; 3]> = (0..8)
         .map(|i| {
             let c = [(i & 1) as f32, ((i >> 1) & 1) as f32, ((i >> 2) & 1) as f32];
@@ -29,7 +34,7 @@ fn write_step(path: &Path, scale: f32, stretch: f32, bad: bool) {
         "# vtk DataFile Version 3.0\nstep\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 8 float\n",
     );
     for p in &corners {
-        s.push_str(&format!("{} {} {}\n", p[0], p[1], p[2]));
+        s.push_str(&format!("{} {} {}\n", f64::from(p[0]) + offset, p[1], p[2]));
     }
     s.push_str("CELLS 6 30\n");
     for t in &tets {
@@ -176,4 +181,43 @@ fn moving_points_take_the_topology_of_the_step_before() {
     assert_eq!(a.topology, b.topology);
     assert_eq!(a.point_records(), b.point_records());
     assert_eq!(setup.extent, fresh.extent);
+}
+
+/// A mesh far from the file's origin is stored relative to each step's
+/// centre; when its points move, a step made anew keeps the first step's
+/// camera in the file's coordinates (moved to the new step's origin), and
+/// the first step's opacity unit distance.
+#[test]
+fn a_moving_mesh_far_away_keeps_the_view_in_file_coordinates() {
+    let dir = std::env::temp_dir().join(format!("tetray-engine-steps-far-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("scratch folder");
+    write_step_at(&dir.join("a.vtk"), 1.0, 1.0, false, 1.0e6);
+    write_step_at(&dir.join("b.vtk"), 1.0, 1.5, false, 1.0e6);
+    let path = dir.join("far.series");
+    std::fs::write(
+        &path,
+        r#"{"file-series-version": "1.0", "files": [{"name": "a.vtk", "time": 0}, {"name": "b.vtk", "time": 1}]}"#,
+    )
+    .expect("write the series");
+    let mut steps = TimeSteps::new(&path, Default::default());
+    let mut setup = steps.prepare(Some(0), &options(), QUIET).expect("step 0");
+    let (first, origin, unit) = (setup.camera, setup.extent.origin, setup.unit_distance);
+    assert!(origin.x > 0.9e6, "centred: {origin}");
+    steps
+        .advance(&mut setup, 1, &options(), QUIET)
+        .expect("step 1");
+    assert_ne!(setup.extent.origin, origin);
+    let world = |p: glam::Vec3, o: glam::DVec3| p.as_dvec3() + o;
+    let moved = world(setup.camera.focal_point, setup.extent.origin);
+    assert!(
+        (moved - world(first.focal_point, origin)).length() < 1e-3,
+        "{moved}"
+    );
+    let moved = world(setup.camera.position, setup.extent.origin);
+    assert!(
+        (moved - world(first.position, origin)).length() < 1e-3,
+        "{moved}"
+    );
+    assert_eq!(setup.unit_distance, unit);
 }
