@@ -79,8 +79,8 @@ pub struct ViewerApp {
     pub(crate) ui_ms: Option<f64>,
     last_frame: Option<Instant>,
     /// The data's time steps, when it has several.
-    pub(crate) time: Option<crate::time::TimeSeries>,
-    pub(crate) recorder: crate::record::RecordPanel,
+    pub(crate) time: Option<crate::series::TimeSeries>,
+    pub(crate) recorder: crate::series::RecordPanel,
 }
 
 impl ViewerApp {
@@ -145,7 +145,7 @@ impl ViewerApp {
             ui_ms: None,
             last_frame: None,
             time: None,
-            recorder: crate::record::RecordPanel::default(),
+            recorder: crate::series::RecordPanel::default(),
         };
         app.rebuild_integrators()?;
         Ok(app)

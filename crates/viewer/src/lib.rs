@@ -22,6 +22,7 @@ pub mod present;
 pub mod projection;
 mod record;
 mod screenshot;
+mod series;
 pub mod tf_editor;
 mod time;
 mod window;
@@ -29,8 +30,7 @@ mod window;
 use std::sync::Arc;
 
 pub use app::{ViewerApp, ViewerOptions};
-pub use record::Recording;
-pub use time::TimeSeries;
+pub use series::{Recording, TimeSeries};
 
 /// Default window size (points).
 pub const WINDOW_SIZE: [f32; 2] = [1280.0, 800.0];

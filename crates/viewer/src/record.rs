@@ -15,15 +15,7 @@ use tetray_engine::{Engine, RendererChoice, WalkOptions};
 use tetray_integrate::{Method, ScalarIntegrator};
 
 use crate::app::ViewerApp;
-
-/// What to record.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Recording {
-    /// Every time step, one frame each.
-    TimeSteps,
-    /// `frames` frames turning `degrees` about the view-up in all.
-    Orbit { degrees: f32, frames: u32 },
-}
+use crate::series::Recording;
 
 impl ViewerApp {
     /// Records `what` to `path` at `fps` frames per second; returns the
@@ -106,28 +98,6 @@ impl ViewerApp {
             std::mem::replace(&mut self.setup.integrator, integrator),
             std::mem::replace(&mut self.setup.method, method),
         )
-    }
-}
-
-/// The panel's recording controls and their state.
-pub(crate) struct RecordPanel {
-    pub path: String,
-    pub fps: u32,
-    pub degrees: f32,
-    pub frames: u32,
-    /// The last recording's message: (is an error, text).
-    pub message: Option<(bool, String)>,
-}
-
-impl Default for RecordPanel {
-    fn default() -> Self {
-        RecordPanel {
-            path: "tetray-view.gif".to_string(),
-            fps: 10,
-            degrees: 360.0,
-            frames: 36,
-            message: None,
-        }
     }
 }
 

@@ -11,48 +11,10 @@ use std::time::{Duration, Instant};
 
 use anyhow::Context;
 use egui::Ui;
-use tetray_engine::{FrameOptions, Log, TimeSteps};
+use tetray_engine::Log;
 
 use crate::app::{HISTOGRAM_BINS, ViewerApp, histogram};
-
-/// The time steps the viewer plays.
-pub struct TimeSeries {
-    steps: TimeSteps,
-    /// What the setup of a step that must be made anew is made with.
-    options: FrameOptions,
-    /// The stored time of each step.
-    times: Vec<f64>,
-    /// The step shown.
-    pub step: usize,
-    pub playing: bool,
-    /// Steps per second while playing.
-    pub fps: f32,
-    last_step: Option<Instant>,
-}
-
-impl TimeSeries {
-    /// The steps of `steps` (whose `times` are the stored times), with the
-    /// setup on step `step` made from `options`.
-    pub fn new(steps: TimeSteps, options: FrameOptions, times: Vec<f64>, step: usize) -> Self {
-        TimeSeries {
-            steps,
-            options,
-            times,
-            step,
-            playing: false,
-            fps: 4.0,
-            last_step: None,
-        }
-    }
-
-    pub fn len(&self) -> usize {
-        self.times.len()
-    }
-
-    pub fn is_empty(&self) -> bool {
-        self.times.is_empty()
-    }
-}
+use crate::series::TimeSeries;
 
 impl ViewerApp {
     /// Plays `series` in this viewer (its setup must be on `series.step`).
