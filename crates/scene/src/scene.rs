@@ -226,14 +226,7 @@ impl Scene {
     /// scene's points and tetrahedra, perhaps other fields), with `field`
     /// active.
     fn with_mesh(&self, mesh: TetMesh, field: &str) -> Result<Scene, SceneError> {
-        let scalar = active_field(&mesh, field).map_err(|e| match e {
-            SceneError::NonFiniteScalar { name, point, value } => SceneError::NonFiniteScalar {
-                name,
-                point: self.input_point(point as u32) as usize,
-                value,
-            },
-            other => other,
-        })?;
+        let scalar = active_field(&mesh, field).map_err(|e| self.in_input_numbering(e))?;
         let points = mesh
             .points
             .iter()
@@ -283,28 +276,27 @@ impl Scene {
                 })
                 .collect(),
         };
-        let step = TetMesh {
-            points: Vec::new(),
-            tets: Vec::new(),
-            fields,
-        };
-        let scalar = match step.field(&self.field) {
-            Some(field) => match first_position(&field.values, |v| !v.is_finite()) {
-                Some(point) => Err(SceneError::NonFiniteScalar {
-                    name: self.field.clone(),
-                    point: self.input_point(point as u32) as usize,
-                    value: field.values[point],
-                }),
-                None => Ok(field.values.clone()),
-            },
-            None => active_field(&step, &self.field),
-        }?;
+        let scalar =
+            active_values(&fields, n, &self.field).map_err(|e| self.in_input_numbering(e))?;
         for (record, &s) in self.points.iter_mut().zip(&scalar) {
             record[3] = s;
         }
         self.scalar = scalar;
-        self.mesh.fields = step.fields;
+        self.mesh.fields = fields;
         Ok(())
+    }
+
+    /// `error` with the point it names (in the scene's numbering) given in
+    /// the input's.
+    fn in_input_numbering(&self, error: SceneError) -> SceneError {
+        match error {
+            SceneError::NonFiniteScalar { name, point, value } => SceneError::NonFiniteScalar {
+                name,
+                point: self.input_point(point as u32) as usize,
+                value,
+            },
+            other => other,
+        }
     }
 
     /// The renumbering applied to the input (`None`: input order).
@@ -353,20 +345,32 @@ impl Scene {
 }
 
 fn active_field(mesh: &TetMesh, name: &str) -> Result<Vec<f32>, SceneError> {
-    let field = mesh.field(name).ok_or_else(|| SceneError::UnknownField {
-        name: name.to_string(),
-        available: mesh
-            .fields
-            .iter()
-            .map(|f| format!("{:?}", f.name))
-            .collect::<Vec<_>>()
-            .join(", "),
-    })?;
-    if field.values.len() != mesh.points.len() {
+    active_values(&mesh.fields, mesh.points.len(), name)
+}
+
+/// The values of field `name` among `fields` of a mesh of `points` points,
+/// checked: present, one per point, finite.
+fn active_values(
+    fields: &[ScalarField],
+    points: usize,
+    name: &str,
+) -> Result<Vec<f32>, SceneError> {
+    let field = fields
+        .iter()
+        .find(|f| f.name == name)
+        .ok_or_else(|| SceneError::UnknownField {
+            name: name.to_string(),
+            available: fields
+                .iter()
+                .map(|f| format!("{:?}", f.name))
+                .collect::<Vec<_>>()
+                .join(", "),
+        })?;
+    if field.values.len() != points {
         return Err(SceneError::FieldLength {
             name: name.to_string(),
             values: field.values.len(),
-            points: mesh.points.len(),
+            points,
         });
     }
     if let Some(point) = first_position(&field.values, |v| !v.is_finite()) {
