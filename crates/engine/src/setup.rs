@@ -200,19 +200,12 @@ impl Setup {
         let unit_distance = choice
             .unit_distance
             .unwrap_or(extent.paraview_unit_distance);
-        let range = choice.tf_range(extent.range);
-        let tf = tf::transfer_function(
-            &choice.tf,
-            &extent.field,
-            range,
-            extent.bounds,
-            unit_distance,
-            log,
-        )?;
-        let integrator_options =
-            tf::integrator_options(&choice, unit_distance, extent.mean_chord, range);
-        let (integrator, integrator_time) =
-            tf::integrator(choice.method, &tf, &integrator_options)?;
+        let Tables {
+            tf,
+            options: integrator_options,
+            integrator,
+            time: integrator_time,
+        } = tables(&choice, choice.method, &extent, unit_distance, log)?;
         (log.info)(tf::describe_integrator(
             &integrator,
             &integrator_options,
@@ -359,26 +352,12 @@ impl Setup {
         let mut extent = self.extent.clone();
         extent.field = field.to_string();
         extent.range = range;
-        let range = self.choice.tf_range(range);
-        let tf = tf::transfer_function(
-            &self.choice.tf,
-            field,
-            range,
-            extent.bounds,
-            self.unit_distance,
-            log,
-        )?;
-        let options =
-            tf::integrator_options(&self.choice, self.unit_distance, extent.mean_chord, range);
-        let (integrator, time) = tf::integrator(self.method, &tf, &options)?;
+        let tables = tables(&self.choice, self.method, &extent, self.unit_distance, log)?;
         if let (Some(slot), Some(scene)) = (self.scene_slot(), scene) {
             *slot = Arc::new(scene);
         }
         self.extent = extent;
-        self.tf = tf;
-        self.integrator_options = options;
-        self.integrator = integrator;
-        self.integrator_time = time;
+        self.use_tables(tables);
         Ok(())
     }
 
@@ -396,15 +375,38 @@ impl Setup {
     ) -> Result<(), EngineError> {
         let name = self.extent.name.clone();
         let field = self.extent.field.clone();
-        let Some(slot) = self.scene_slot() else {
+        let Some(points) = self.scene_arc().map(|s| s.mesh.points.len()) else {
             bail!("{name}: a time step's fields need the tetrahedra (this setup has none)");
         };
         if field == SOLID && !fields.iter().any(|f| f.name == SOLID) {
             fields.push(ScalarField {
                 name: SOLID.into(),
-                values: vec![0.0; slot.mesh.points.len()],
+                values: vec![0.0; points],
             });
         }
+        // The tables first: the scene changes last, once nothing can fail.
+        let mut extent = self.extent.clone();
+        let active = fields.iter().find(|f| f.name == field);
+        let tables = match (active, self.choice.range) {
+            (Some(active), None) => {
+                extent.range = value_range(&active.values);
+                Some(tables(
+                    &self.choice,
+                    self.method,
+                    &extent,
+                    self.unit_distance,
+                    log,
+                )?)
+            }
+            (Some(active), Some(_)) => {
+                extent.range = value_range(&active.values);
+                None
+            }
+            (None, _) => None,
+        };
+        let Some(slot) = self.scene_slot() else {
+            unreachable!("the scene was found above");
+        };
         match Arc::get_mut(slot) {
             Some(scene) => scene.set_input_fields(fields),
             None => {
@@ -415,34 +417,20 @@ impl Setup {
             }
         }
         .with_context(|| format!("{name}: field {field:?}"))?;
-        let range = value_range(&self.scene()?.scalar);
-        if self.choice.range.is_none() {
-            let tf_range = self.choice.tf_range(range);
-            let tf = tf::transfer_function(
-                &self.choice.tf,
-                &field,
-                tf_range,
-                self.extent.bounds,
-                self.unit_distance,
-                log,
-            )?;
-            let options = tf::integrator_options(
-                &self.choice,
-                self.unit_distance,
-                self.extent.mean_chord,
-                tf_range,
-            );
-            let (integrator, time) = tf::integrator(self.method, &tf, &options)?;
-            self.tf = tf;
-            self.integrator_options = options;
-            self.integrator = integrator;
-            self.integrator_time = time;
-        } else {
+        self.extent = extent;
+        match tables {
+            Some(tables) => self.use_tables(tables),
             // The integrator of the fixed range is kept: nothing was made.
-            self.integrator_time = Duration::ZERO;
+            None => self.integrator_time = Duration::ZERO,
         }
-        self.extent.range = range;
         Ok(())
+    }
+
+    fn use_tables(&mut self, tables: Tables) {
+        self.tf = tables.tf;
+        self.integrator_options = tables.options;
+        self.integrator = tables.integrator;
+        self.integrator_time = tables.time;
     }
 
     fn scene_slot(&mut self) -> Option<&mut Arc<Scene>> {
@@ -467,4 +455,42 @@ fn pick_field(input: &MeshInput, scalar: Option<&str>) -> Result<Option<String>,
         Some(name) if fields.iter().any(|f| f.name == name) => Ok(Some(name.to_string())),
         Some(name) => Err(unknown_field(name, &input.name, fields)),
     }
+}
+
+/// A transfer function and the integrator made with it, and the time it
+/// took.
+struct Tables {
+    tf: TransferFunction,
+    options: IntegratorOptions,
+    integrator: ScalarIntegrator,
+    time: Duration,
+}
+
+/// The transfer function of `choice` for `extent`'s field over the range
+/// the choice gives for the field's (`IntegratorChoice::tf_range`), and
+/// the integrator of `method` with it.
+fn tables(
+    choice: &IntegratorChoice,
+    method: Method,
+    extent: &Extent,
+    unit_distance: f32,
+    log: Log<'_>,
+) -> Result<Tables, EngineError> {
+    let range = choice.tf_range(extent.range);
+    let tf = tf::transfer_function(
+        &choice.tf,
+        &extent.field,
+        range,
+        extent.bounds,
+        unit_distance,
+        log,
+    )?;
+    let options = tf::integrator_options(choice, unit_distance, extent.mean_chord, range);
+    let (integrator, time) = tf::integrator(method, &tf, &options)?;
+    Ok(Tables {
+        tf,
+        options,
+        integrator,
+        time,
+    })
 }
