@@ -6,51 +6,35 @@
 
 use std::path::{Path, PathBuf};
 
+use glam::Vec3;
 use tetray_engine::{FrameOptions, Log, TimeSteps};
+use tetray_io::vtk::write_legacy;
+use tetray_mesh::synthetic::{CellSplit, ScalarSpec, add_field, box_grid};
 
 /// Legacy VTK unstructured grid: a unit cube of 6 tetrahedra (points
-/// stretched along x by `stretch`), the field f = scale * (x + 2y + 3z).
+/// stretched along x by `stretch`), the field f = scale * (x + 2y + 3z)
+/// over the unstretched cube; `bad` puts a NaN in it.
 fn write_step(path: &Path, scale: f32, stretch: f32, bad: bool) {
     write_step_at(path, scale, stretch, bad, 0.0);
 }
 
 /// [`write_step`] with the cube moved `offset` along x.
-fn write_step_at(path: &Path, scale: f32, stretch: f32, bad: bool, offset: f64) {
-    let corners: Vec<[f32; 3]> = (0..8)
-        .map(|i| {
-            let c = [(i & 1) as f32, ((i >> 1) & 1) as f32, ((i >> 2) & 1) as f32];
-            [c[0] * stretch, c[1], c[2]]
-        })
-        .collect();
-    let tets = [
-        [0, 1, 3, 7],
-        [0, 1, 5, 7],
-        [0, 2, 3, 7],
-        [0, 2, 6, 7],
-        [0, 4, 5, 7],
-        [0, 4, 6, 7],
-    ];
-    let mut s = String::from(
-        "# vtk DataFile Version 3.0\nstep\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 8 float\n",
+fn write_step_at(path: &Path, scale: f32, stretch: f32, bad: bool, offset: f32) {
+    let (min, max) = (
+        Vec3::new(offset, 0.0, 0.0),
+        Vec3::new(offset + stretch, 1.0, 1.0),
     );
-    for p in &corners {
-        s.push_str(&format!("{} {} {}\n", f64::from(p[0]) + offset, p[1], p[2]));
+    let mut mesh = box_grid(min, max, [1, 1, 1], CellSplit::Six).expect("the cube");
+    let spec = ScalarSpec::Linear {
+        offset: -scale * offset / stretch,
+        gradient: Vec3::new(scale / stretch, 2.0 * scale, 3.0 * scale),
+    };
+    add_field(&mut mesh, "f", spec);
+    if bad {
+        mesh.fields[0].values[5] = f32::NAN;
     }
-    s.push_str("CELLS 6 30\n");
-    for t in &tets {
-        s.push_str(&format!("4 {} {} {} {}\n", t[0], t[1], t[2], t[3]));
-    }
-    s.push_str("CELL_TYPES 6\n10\n10\n10\n10\n10\n10\n");
-    s.push_str("POINT_DATA 8\nSCALARS f float\nLOOKUP_TABLE default\n");
-    for (i, p) in corners.iter().enumerate() {
-        let v = scale * (p[0] / stretch + 2.0 * p[1] + 3.0 * p[2]);
-        if bad && i == 5 {
-            s.push_str("nan\n");
-        } else {
-            s.push_str(&format!("{v}\n"));
-        }
-    }
-    std::fs::write(path, s).expect("write a step");
+    let mut file = std::fs::File::create(path).expect("create a step");
+    write_legacy(&mesh, &mut file, false).expect("write a step");
 }
 
 /// A series of steps `(scale, stretch, bad)` in a fresh folder.

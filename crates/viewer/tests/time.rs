@@ -8,38 +8,23 @@ mod support;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
+use glam::Vec3;
 use support::{difference, displayed, gpu_or_skip, harness_on, options, run_until_idle};
 use tetray_engine::{FrameOptions, Log, Representation, Setup, TimeSteps};
+use tetray_io::vtk::write_legacy;
+use tetray_mesh::synthetic::{CellSplit, ScalarSpec, add_field, box_grid};
 use tetray_viewer::TimeSeries;
 
 /// Legacy VTK: a unit cube of 6 tetrahedra, f = scale * (x + 2y + 3z).
 fn write_step(path: &Path, scale: f32) {
-    let mut s = String::from(
-        "# vtk DataFile Version 3.0\nstep\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 8 float\n",
-    );
-    let corner = |i: usize| [(i & 1) as f32, ((i >> 1) & 1) as f32, ((i >> 2) & 1) as f32];
-    for i in 0..8 {
-        let c = corner(i);
-        s.push_str(&format!("{} {} {}\n", c[0], c[1], c[2]));
-    }
-    s.push_str("CELLS 6 30\n");
-    for t in [
-        [0, 1, 3, 7],
-        [0, 1, 5, 7],
-        [0, 2, 3, 7],
-        [0, 2, 6, 7],
-        [0, 4, 5, 7],
-        [0, 4, 6, 7],
-    ] {
-        s.push_str(&format!("4 {} {} {} {}\n", t[0], t[1], t[2], t[3]));
-    }
-    s.push_str("CELL_TYPES 6\n10\n10\n10\n10\n10\n10\n");
-    s.push_str("POINT_DATA 8\nSCALARS f float\nLOOKUP_TABLE default\n");
-    for i in 0..8 {
-        let c = corner(i);
-        s.push_str(&format!("{}\n", scale * (c[0] + 2.0 * c[1] + 3.0 * c[2])));
-    }
-    std::fs::write(path, s).expect("write a step");
+    let mut mesh = box_grid(Vec3::ZERO, Vec3::ONE, [1, 1, 1], CellSplit::Six).expect("the cube");
+    let spec = ScalarSpec::Linear {
+        offset: 0.0,
+        gradient: Vec3::new(1.0, 2.0, 3.0) * scale,
+    };
+    add_field(&mut mesh, "f", spec);
+    let mut file = std::fs::File::create(path).expect("create a step");
+    write_legacy(&mesh, &mut file, false).expect("write a step");
 }
 
 fn series(name: &str) -> PathBuf {
