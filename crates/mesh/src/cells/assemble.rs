@@ -15,6 +15,7 @@ use super::grid::{CellArray, CellGrid};
 use super::poly_grid::{checked_faces, separate_inline_faces};
 use super::polyhedron::{prism_faces, split_polyhedron};
 use super::split::{hexahedron_cones, split_cell};
+use super::split_centred::hexahedron_centred;
 use super::split_quadratic::{Subdivision, subdivide};
 use super::{CellCounts, CellError, ReadOptions, SubdividedCells, VtkRead};
 use crate::{ScalarField, TetMesh, first_index, first_position};
@@ -89,6 +90,7 @@ pub fn assemble_at(
     let mut lower_dim: BTreeMap<i64, usize> = BTreeMap::new();
     let mut dropped = 0;
     let mut resplit = 0;
+    let mut centred = 0;
     let mut volume_cell = vec![only_tetra; cells.len()];
     let serial_cells = if only_tetra { 0 } else { grid.types.len() };
     for (c, &type_id) in grid.types.iter().enumerate().take(serial_cells) {
@@ -154,6 +156,11 @@ pub fn assemble_at(
                         tets.truncate(tets_before);
                         tets.extend(better);
                         resplit += 1;
+                    } else if let Some(split) = hexahedron_centred(ids, &grid.points) {
+                        tets.truncate(tets_before);
+                        let c = added.private(split.weights);
+                        tets.extend(split.faces.iter().map(|&[a, b, d]| [c, a, b, d]));
+                        centred += 1;
                     }
                 }
             }
@@ -219,6 +226,12 @@ pub fn assemble_at(
         warnings.push(format!(
             "{resplit} distorted hexahedra split from another corner (same face diagonals, so \
              still conforming): the default split made tetrahedra of both orientations"
+        ));
+    }
+    if centred > 0 {
+        warnings.push(format!(
+            "{centred} folded hexahedra split around a point added inside each (no split over \
+             their corners has one orientation; the cones from the point over their faces do)"
         ));
     }
     if dropped > 0 {

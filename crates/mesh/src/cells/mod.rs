@@ -43,6 +43,7 @@ mod pieces;
 mod poly_grid;
 mod polyhedron;
 mod split;
+mod split_centred;
 mod split_quadratic;
 mod structured_grid;
 

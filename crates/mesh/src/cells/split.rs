@@ -43,7 +43,7 @@ const HEX_REF: [Point; 8] = [
     [1., 1., 1.],
     [0., 1., 1.],
 ];
-const HEX_FACES: [[usize; 4]; 6] = [
+pub(super) const HEX_FACES: [[usize; 4]; 6] = [
     [0, 3, 2, 1],
     [4, 5, 6, 7],
     [0, 1, 5, 4],
@@ -213,7 +213,7 @@ pub fn hexahedron_cones(ids: &[u32]) -> Vec<Vec<[u32; 4]>> {
 /// The two triangles (local vertex indices) of quad `q`, cut by the
 /// diagonal through its vertex with the smallest global index (the first
 /// such vertex on ties, which only collapsed cells have).
-fn quad_triangles(ids: &[u32], q: [usize; 4]) -> [[usize; 3]; 2] {
+pub(super) fn quad_triangles(ids: &[u32], q: [usize; 4]) -> [[usize; 3]; 2] {
     let mut k = 0;
     for i in 1..4 {
         if ids[q[i]] < ids[q[k]] {
