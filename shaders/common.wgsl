@@ -24,6 +24,11 @@ struct Params {
     // Offsets (in vec4 entries) of the primitives and the face table in `bvh`.
     prim_offset: u32,
     face_offset: u32,
+    // Offset (in `bvh` entries) of the cells left out of the walk: the
+    // bounds of their points (two entries, floats as bits), then one entry
+    // of point indices per tetrahedron (overlaps.wgsl).
+    overlap_offset: u32,
+    overlap_count: u32,
 }
 
 // The pixels of one dispatch (a dynamic-offset binding, one per tile).
@@ -43,7 +48,9 @@ const STAT_STEPS_HI: u32 = 4u;
 const STAT_ENTRIES: u32 = 5u;
 const STAT_BOUND_HITS: u32 = 6u;
 const STAT_WALK_FAILURES: u32 = 7u;
-const STAT_COUNT: u32 = 8u;
+const STAT_OVERLAP_SEGMENTS: u32 = 8u;
+const STAT_OVERLAP_OVERFLOWS: u32 = 9u;
+const STAT_COUNT: u32 = 10u;
 
 // A boundary face with no neighbour, and one on the convex hull (a ray
 // leaving through it is done).
@@ -66,7 +73,8 @@ const FINAL_EXIT: u32 = 0xfffffffeu;
 @group(0) @binding(5) var<storage, read> tets1: array<vec4<u32>>;
 // BVH nodes (two entries each: min.xyz + index, max.xyz + count, floats as
 // bits), then primitives (three point indices + boundary face), then per
-// boundary face its tetrahedron << 2 | local face, four to an entry.
+// boundary face its tetrahedron << 2 | local face, four to an entry, then
+// the left-out cells.
 @group(0) @binding(6) var<storage, read> bvh: array<vec4<u32>>;
 // Transfer-function intervals (5 entries each), then the pre-integration
 // table (2 entries per (front, back) pair).

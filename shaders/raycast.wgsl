@@ -146,6 +146,8 @@ struct Counters {
     entries: u32,
     bound_hit: u32,
     failure: u32,
+    overlap_segments: u32,
+    overlap_overflow: u32,
 }
 
 struct Pixel {
@@ -172,7 +174,8 @@ fn cast_ray(px: u32, py: u32) -> Pixel {
     var t_cursor = select(0.0, -FAR, inside);
     var color = vec3<f32>(0.0);
     var trans = vec3<f32>(1.0);
-    var counters = Counters(0u, 0u, 0u, 0u, 0u, 0u);
+    var counters = Counters(0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u);
+    counters.overlap_overflow = find_holes(ray);
     // Boundary faces entered at distance skip_t with no segment since: a
     // re-entry query must not return them again.
     var skip: Skip;
@@ -189,6 +192,14 @@ fn cast_ray(px: u32, py: u32) -> Pixel {
             t_query = t_cursor - REENTRY_REL * (params.scene_abs_max + max(max(o.x, o.y), o.z));
         }
         let entry = first_entry(ray, t_query, FAR, skip);
+        if (hole_count > 0u) {
+            // The gap before this entry (or after the last exit).
+            let filled = fill_gap(t_cursor, select(FAR, entry.t, entry.found), &color, &trans);
+            counters.overlap_segments += filled.segments;
+            if (filled.opaque) {
+                break;
+            }
+        }
         if (!entry.found) {
             break;
         }
@@ -249,9 +260,10 @@ fn cast_ray(px: u32, py: u32) -> Pixel {
             sample_in = sample_out;
             let next = tet_next(tet)[ex.face];
             if (next >= FINAL_EXIT) {
-                // Left through the convex hull: nothing more to meet;
-                // otherwise ask the BVH where the ray comes back.
-                done = next == FINAL_EXIT;
+                // Left through the convex hull: nothing more to meet but
+                // the gap of a left-out cell beyond; otherwise ask the BVH
+                // where the ray comes back.
+                done = next == FINAL_EXIT && !holes_beyond(t_out);
                 t_cursor = t_out;
                 break;
             }
@@ -282,6 +294,8 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(local_invocation
         atomicAdd(&group_stats[STAT_ENTRIES], c.entries);
         atomicAdd(&group_stats[STAT_BOUND_HITS], c.bound_hit);
         atomicAdd(&group_stats[STAT_WALK_FAILURES], c.failure);
+        atomicAdd(&group_stats[STAT_OVERLAP_SEGMENTS], c.overlap_segments);
+        atomicAdd(&group_stats[STAT_OVERLAP_OVERFLOWS], c.overlap_overflow);
     }
     workgroupBarrier();
     if (lid == 0u) {
@@ -291,5 +305,7 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(local_invocation
         atomicAdd(&stats[STAT_ENTRIES], atomicLoad(&group_stats[STAT_ENTRIES]));
         atomicAdd(&stats[STAT_BOUND_HITS], atomicLoad(&group_stats[STAT_BOUND_HITS]));
         atomicAdd(&stats[STAT_WALK_FAILURES], atomicLoad(&group_stats[STAT_WALK_FAILURES]));
+        atomicAdd(&stats[STAT_OVERLAP_SEGMENTS], atomicLoad(&group_stats[STAT_OVERLAP_SEGMENTS]));
+        atomicAdd(&stats[STAT_OVERLAP_OVERFLOWS], atomicLoad(&group_stats[STAT_OVERLAP_OVERFLOWS]));
     }
 }

@@ -20,6 +20,12 @@ pub struct WalkCounters {
     pub steps_bound_hits: u64,
     /// Rays stopped in a cell with no exit face (a degenerate cell).
     pub walk_failures: u64,
+    /// Segments integrated in the cells left out of the walk, where they
+    /// fill its holes (not counted in `segments`).
+    pub overlap_segments: u64,
+    /// Rays that met more left-out tetrahedra than a ray keeps (the rest
+    /// were not composited).
+    pub overlap_overflows: u64,
 }
 
 impl WalkCounters {
@@ -48,6 +54,8 @@ impl WalkCounters {
             entries: self.entries + other.entries,
             steps_bound_hits: self.steps_bound_hits + other.steps_bound_hits,
             walk_failures: self.walk_failures + other.walk_failures,
+            overlap_segments: self.overlap_segments + other.overlap_segments,
+            overlap_overflows: self.overlap_overflows + other.overlap_overflows,
         }
     }
 
@@ -77,6 +85,8 @@ mod tests {
             entries: 5,
             steps_bound_hits: 6,
             walk_failures: 7,
+            overlap_segments: 8,
+            overlap_overflows: 9,
         };
         let b = a.merge(a);
         assert_eq!(
@@ -89,6 +99,8 @@ mod tests {
                 entries: 10,
                 steps_bound_hits: 12,
                 walk_failures: 14,
+                overlap_segments: 16,
+                overlap_overflows: 18,
             }
         );
         assert_eq!(b.unfinished(), 26);

@@ -122,6 +122,7 @@ fn load_part<C: Communicator>(
             mesh,
             topology,
             report: whole.report.clone(),
+            overlaps: Vec::new(),
         })
     };
     Ok((input.name, loaded, cells, origin))

@@ -113,7 +113,7 @@ pub fn prepare_mesh(
 
     let start = Instant::now();
     let preset = bvh_preset_for(options.bvh_preset, loaded.topology.boundary_faces.len());
-    let scene = Scene::new(loaded.mesh, loaded.topology, &field, preset)
+    let scene = Scene::from_loaded(loaded, &field, preset)
         .with_context(|| format!("{name}: preparing the mesh for ray casting"))?;
     let scene_time = start.elapsed();
     let bvh = scene.bvh.stats();

@@ -76,6 +76,12 @@ pub struct Params {
     pub point_chunk: u32,
     pub prim_offset: u32,
     pub face_offset: u32,
+    /// Offset (in entries of the BVH array) of the left-out cells: their
+    /// bounds (two entries), then one entry of point indices per
+    /// tetrahedron.
+    pub overlap_offset: u32,
+    pub overlap_count: u32,
+    pub _pad: [u32; 2],
 }
 
 /// What the frame parameters need to know of a mesh and its buffers.
@@ -88,6 +94,8 @@ pub struct SceneLayout {
     pub point_chunk: u32,
     pub prim_offset: u32,
     pub face_offset: u32,
+    pub overlap_offset: u32,
+    pub overlap_count: u32,
 }
 
 /// WGSL `Tile`: the pixels of one dispatch.
@@ -109,7 +117,9 @@ pub const STAT_STEPS_HI: usize = 4;
 pub const STAT_ENTRIES: usize = 5;
 pub const STAT_BOUND_HITS: usize = 6;
 pub const STAT_WALK_FAILURES: usize = 7;
-pub const STAT_COUNT: usize = 8;
+pub const STAT_OVERLAP_SEGMENTS: usize = 8;
+pub const STAT_OVERLAP_OVERFLOWS: usize = 9;
+pub const STAT_COUNT: usize = 10;
 
 /// `vec4<f32>` entries per transfer-function interval in the tables buffer.
 pub const INTERVAL_ENTRIES: usize = 4;

@@ -304,6 +304,8 @@ pub fn walk_counters(counters: &[u32], rays: u64) -> WalkCounters {
         entries: at(layout::STAT_ENTRIES),
         steps_bound_hits: at(layout::STAT_BOUND_HITS),
         walk_failures: at(layout::STAT_WALK_FAILURES),
+        overlap_segments: at(layout::STAT_OVERLAP_SEGMENTS),
+        overlap_overflows: at(layout::STAT_OVERLAP_OVERFLOWS),
     }
 }
 
@@ -360,6 +362,9 @@ pub fn frame_params(
         point_chunk: scene.point_chunk,
         prim_offset: scene.prim_offset,
         face_offset: scene.face_offset,
+        overlap_offset: scene.overlap_offset,
+        overlap_count: scene.overlap_count,
+        _pad: [0; 2],
     })
 }
 

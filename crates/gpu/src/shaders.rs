@@ -13,6 +13,8 @@ pub const PREDICATE: &str = include_str!("../../../shaders/predicate.wgsl");
 pub const BVH: &str = include_str!("../../../shaders/bvh.wgsl");
 /// Transfer-function sampling and every integration method.
 pub const INTEGRATE: &str = include_str!("../../../shaders/integrate.wgsl");
+/// The cells left out of the walk, composited in the gaps they leave.
+pub const OVERLAPS: &str = include_str!("../../../shaders/overlaps.wgsl");
 /// The per-pixel kernel: entry, walk, compositing, counters.
 pub const RAYCAST: &str = include_str!("../../../shaders/raycast.wgsl");
 
@@ -29,5 +31,5 @@ pub fn module(pieces: &[&str]) -> String {
 
 /// The ray-casting module: every piece, in order.
 pub fn raycast_source() -> String {
-    module(&[COMMON, PREDICATE, BVH, INTEGRATE, RAYCAST])
+    module(&[COMMON, PREDICATE, BVH, INTEGRATE, OVERLAPS, RAYCAST])
 }

@@ -27,10 +27,15 @@ pub struct SceneData {
     /// Per tetrahedron two entries: vertex indices, then across each local
     /// face `neighbour << 2 | its local face` or a boundary marker.
     pub tets: Vec<[u32; 4]>,
-    /// BVH nodes (two entries each), primitives, then the face table.
+    /// BVH nodes (two entries each), primitives, the face table, then the
+    /// left-out cells (`tetray_scene::overlaps`): the bounds of their
+    /// points (minimum, maximum: two entries of f32 bits) and one entry of
+    /// point indices per tetrahedron.
     pub bvh: Vec<[u32; 4]>,
     pub prim_offset: u32,
     pub face_offset: u32,
+    pub overlap_offset: u32,
+    pub overlap_count: u32,
     pub bounds: (Vec3, Vec3),
     pub scene_abs_max: f32,
 }
@@ -68,12 +73,21 @@ impl SceneData {
             entry[..c.len()].copy_from_slice(c);
             entry
         }));
+        let overlap_offset = bvh.len() as u32;
+        let overlaps = scene.overlaps();
+        let (lo, hi) = overlaps.bounds;
+        for corner in [lo, hi] {
+            bvh.push(corner.extend(0.0).to_array().map(f32::to_bits));
+        }
+        bvh.extend(&overlaps.tets);
         Ok(SceneData {
             points: scene.point_records().to_vec(),
             tets,
             bvh,
             prim_offset,
             face_offset,
+            overlap_offset,
+            overlap_count: overlaps.tets.len() as u32,
             bounds: scene.bounds(),
             scene_abs_max: flat.scene_abs_max(),
         })
@@ -94,6 +108,8 @@ pub struct GpuScene {
     pub(crate) tet_chunk: u32,
     pub(crate) prim_offset: u32,
     pub(crate) face_offset: u32,
+    pub(crate) overlap_offset: u32,
+    pub(crate) overlap_count: u32,
     pub(crate) bounds: (Vec3, Vec3),
     pub(crate) scene_abs_max: f32,
     tet_count: usize,
@@ -156,6 +172,8 @@ impl GpuScene {
             tet_chunk,
             prim_offset: data.prim_offset,
             face_offset: data.face_offset,
+            overlap_offset: data.overlap_offset,
+            overlap_count: data.overlap_count,
             bounds: data.bounds,
             scene_abs_max: data.scene_abs_max,
             tet_count: data.tet_count(),
@@ -209,6 +227,8 @@ impl GpuScene {
             point_chunk: self.point_chunk,
             prim_offset: self.prim_offset,
             face_offset: self.face_offset,
+            overlap_offset: self.overlap_offset,
+            overlap_count: self.overlap_count,
         }
     }
 }
@@ -225,6 +245,8 @@ impl SceneData {
             point_chunk: self.points.len() as u32,
             prim_offset: self.prim_offset,
             face_offset: self.face_offset,
+            overlap_offset: self.overlap_offset,
+            overlap_count: self.overlap_count,
         }
     }
 }

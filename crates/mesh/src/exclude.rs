@@ -14,8 +14,12 @@
 //!
 //! What remains is a valid mesh with holes. The faces around a hole are
 //! boundary faces: a ray leaves there and re-enters beyond the hole through
-//! the boundary BVH, as at a seam or a non-conforming interface, so the
-//! image is that of the mesh without those cells, with no streaks.
+//! the boundary BVH, as at a seam or a non-conforming interface.
+//!
+//! The tetrahedra of the cells left out are kept apart as overlaps
+//! ([`overlap_tets`]), each cell's turned so that their signed volumes sum
+//! to the volume its faces enclose: the ray casters fill the holes with
+//! them (`tetray_scene::Overlaps`).
 
 use rayon::prelude::*;
 
@@ -64,7 +68,7 @@ impl ExcludedCells {
             warnings.push(format!(
                 "left out {} cells that cannot be walked ({} tangled, {} overlapping a \
                  neighbour, {} on a face of more than two tetrahedra): {} tetrahedra, {:.4}% of \
-                 the mesh volume; rays cross the gap by leaving and re-entering the mesh \
+                 the mesh volume; the ray casters composite them in the holes they leave \
                  (cells {}{more})",
                 self.cells.len(),
                 self.tangled,
@@ -103,11 +107,20 @@ pub struct KnownTopology {
     pub topology: Topology,
 }
 
+/// What [`exclude_bad_cells`] made of a mesh.
+pub(crate) struct Exclusion {
+    pub topology: Topology,
+    pub excluded: ExcludedCells,
+    /// Tetrahedra reoriented.
+    pub reoriented: usize,
+    /// The tetrahedra of the cells left out (see [`overlap_tets`]).
+    pub overlaps: Vec<[u32; 4]>,
+}
+
 /// Leaves out of `mesh` what cannot be walked (see the module docs),
 /// orients the rest and builds its topology. `tet_cells` gives each
 /// tetrahedron's cell; empty when each tetrahedron is its own cell.
-/// Expects [`crate::validate::check_input`] to have passed. Returns the
-/// topology, what was left out and how many tetrahedra were reoriented.
+/// Expects [`crate::validate::check_input`] to have passed.
 ///
 /// # Errors
 /// [`MeshError::NothingLeft`] when nothing is left; [`MeshError::TooLarge`].
@@ -115,7 +128,7 @@ pub(crate) fn exclude_bad_cells(
     mesh: &mut TetMesh,
     tet_cells: &[u32],
     previous: Option<&KnownTopology>,
-) -> Result<(Topology, ExcludedCells, usize), MeshError> {
+) -> Result<Exclusion, MeshError> {
     let n = mesh.tets.len();
     // Kept tetrahedra are listed by u32 index below.
     check_tet_count(n)?;
@@ -223,5 +236,43 @@ pub(crate) fn exclude_bad_cells(
     } else {
         0.0
     };
-    Ok((topology, excluded, reoriented))
+    let left_out: Vec<usize> = (0..n)
+        .filter(|&t| !shapes[t].1 && reason[cell_of(t) as usize].is_some())
+        .collect();
+    let overlaps = overlap_tets(&given, &left_out, &|t| cell_of(t), &|t| shapes[t].0);
+    Ok(Exclusion {
+        topology,
+        excluded,
+        reoriented,
+        overlaps,
+    })
+}
+
+/// The tetrahedra `left_out` (indices into `tets`, ascending), each cell's
+/// turned (two vertices swapped) when the signed volumes of its
+/// tetrahedra sum below zero. A cell's tetrahedra then cover the region
+/// its faces enclose once, counted with signs: a tangled cell's inverted
+/// tetrahedra keep their negative volume, which cancels where they overlap
+/// its others, so that a constant field over them integrates to the
+/// enclosed volume's.
+fn overlap_tets(
+    tets: &[[u32; 4]],
+    left_out: &[usize],
+    cell_of: &dyn Fn(usize) -> u32,
+    volume: &dyn Fn(usize) -> f64,
+) -> Vec<[u32; 4]> {
+    let mut cell_volume: std::collections::HashMap<u32, f64> = std::collections::HashMap::new();
+    for &t in left_out {
+        *cell_volume.entry(cell_of(t)).or_insert(0.0) += volume(t);
+    }
+    left_out
+        .iter()
+        .map(|&t| {
+            let mut tet = tets[t];
+            if cell_volume[&cell_of(t)] < 0.0 {
+                tet.swap(2, 3);
+            }
+            tet
+        })
+        .collect()
 }

@@ -58,6 +58,7 @@ impl MeshSummary {
             mesh,
             topology,
             report,
+            ..
         } = loaded;
         let fields = mesh
             .fields

@@ -111,6 +111,12 @@ pub struct LoadedMesh {
     pub mesh: TetMesh,
     pub topology: Topology,
     pub report: LoadReport,
+    /// The tetrahedra of the cells left out of the walk (tangled,
+    /// overlapping, non-manifold; not the flat ones), over `mesh.points`,
+    /// each cell's with positive total signed volume: the ray casters
+    /// composite them where the walk leaves a hole
+    /// (`tetray_scene::Overlaps`).
+    pub overlaps: Vec<[u32; 4]>,
 }
 
 impl LoadedMesh {
@@ -195,9 +201,9 @@ pub fn finish_reusing(
     previous: Option<&KnownTopology>,
 ) -> Result<LoadedMesh, MeshError> {
     check_input(&read.mesh)?;
-    let (topology, excluded, reoriented) =
-        exclude_bad_cells(&mut read.mesh, &read.tet_cells, previous)?;
-    read.inverted_fixed += reoriented;
+    let exclusion = exclude_bad_cells(&mut read.mesh, &read.tet_cells, previous)?;
+    let (topology, excluded) = (exclusion.topology, exclusion.excluded);
+    read.inverted_fixed += exclusion.reoriented;
     // Exclusion left only walkable tetrahedra: the findings, no re-check.
     let validation = walkable_report(&read.mesh, &topology);
     let mut warnings = read.warnings;
@@ -223,5 +229,6 @@ pub fn finish_reusing(
             origin: read.origin,
             excluded,
         },
+        overlaps: exclusion.overlaps,
     })
 }

@@ -74,6 +74,8 @@ impl RenderStats {
         c.entries += ray.entries;
         c.steps_bound_hits += u64::from(ray.step_bound_hit);
         c.walk_failures += u64::from(ray.walk_failure);
+        c.overlap_segments += ray.overlap_segments;
+        c.overlap_overflows += u64::from(ray.overlap_overflow);
     }
 
     pub(crate) fn merge(mut self, other: RenderStats) -> RenderStats {

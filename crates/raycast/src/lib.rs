@@ -12,6 +12,7 @@ mod cpu;
 mod entries;
 mod face;
 mod fragment;
+mod holes;
 mod walk;
 
 pub use cpu::{

@@ -12,6 +12,7 @@ use tetray_mesh::FACE_VERTICES;
 
 use crate::entries::EntryList;
 use crate::face::{Face, Vertex, local_index};
+use crate::holes::Holes;
 use tetray_scene::{FINAL_EXIT, Scene};
 
 /// The light of one ray segment, front (nearer the eye) to back.
@@ -77,6 +78,8 @@ pub(crate) struct RayCounters {
     pub steps: u64,
     pub step_bound_hit: bool,
     pub walk_failure: bool,
+    pub overlap_segments: u64,
+    pub overlap_overflow: bool,
 }
 
 /// Light gathered along one ray: premultiplied colour and transmittance.
@@ -244,6 +247,9 @@ pub(crate) struct Walker<S> {
     pub intervals: Vec<Interval>,
     interval_depth: f32,
     interval_segments: u64,
+    /// The left-out cells the ray crosses ([`crate::holes`]), found at its
+    /// first entry query.
+    holes: Holes,
 }
 
 impl<S: Copy + Default> Walker<S> {
@@ -272,6 +278,7 @@ impl<S: Copy + Default> Walker<S> {
             intervals: Vec::new(),
             interval_depth: 0.0,
             interval_segments: 0,
+            holes: Holes::default(),
         }
     }
 
@@ -313,6 +320,7 @@ impl<S: Copy + Default> Walker<S> {
         self.entries = None;
         self.intervals.clear();
         self.interval_segments = 0;
+        self.holes.clear();
     }
 
     /// Answers the started ray's entry queries from `list` (its pixel's
@@ -361,7 +369,7 @@ impl<S: Copy + Default> Walker<S> {
     ) {
         match self.phase {
             Phase::Walking => self.exit::<PREFETCH>(scene, limits),
-            Phase::Entering => self.enter(scene, integrator),
+            Phase::Entering => self.enter(scene, integrator, limits),
             Phase::Crossing | Phase::Done => {}
         }
     }
@@ -379,7 +387,12 @@ impl<S: Copy + Default> Walker<S> {
     }
 
     #[inline(always)]
-    fn enter<I: SegmentIntegrator<Sample = S> + ?Sized>(&mut self, scene: &Scene, integrator: &I) {
+    fn enter<I: SegmentIntegrator<Sample = S> + ?Sized>(
+        &mut self,
+        scene: &Scene,
+        integrator: &I,
+        limits: WalkLimits,
+    ) {
         // Re-entries start a little before the exit (see REENTRY_REL).
         let t_query = if self.counters.entries > 0 {
             reentry_start(&self.ray, self.t_cursor, scene.bvh.scene_abs_max())
@@ -392,6 +405,32 @@ impl<S: Copy + Default> Walker<S> {
                 .bvh
                 .first_entry(&self.ray, t_query, f32::INFINITY, &self.skip),
         };
+        if !self.holes.found {
+            self.holes
+                .find(scene, &self.ray, &self.projector, &mut self.counters);
+        }
+        if !self.holes.is_empty() {
+            // The gap before this entry (or after the last exit).
+            let gap_end = found.map_or(f32::INFINITY, |hit| hit.t);
+            let filled = self.holes.fill(
+                integrator,
+                self.t_cursor,
+                gap_end,
+                limits,
+                &mut self.light,
+                &mut self.counters,
+            );
+            if self.split && filled.segments > 0 {
+                // The gap's light is an interval of its own.
+                self.interval_depth = filled.depth;
+                self.interval_segments = filled.segments;
+                self.close_interval();
+            }
+            if filled.opaque {
+                self.phase = Phase::Done;
+                return;
+            }
+        }
         let Some(hit) = found else {
             self.phase = Phase::Done;
             return;
@@ -526,7 +565,8 @@ impl<S: Copy + Default> Walker<S> {
         if next >= FINAL_EXIT {
             // Left through the convex hull: nothing more to meet; otherwise
             // ask the BVH where the ray comes back.
-            self.phase = if next == FINAL_EXIT {
+            // A left-out cell beyond the hull's exit still has its gap.
+            self.phase = if next == FINAL_EXIT && !self.holes.beyond(self.t_in) {
                 Phase::Done
             } else {
                 Phase::Entering

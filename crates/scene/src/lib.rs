@@ -5,10 +5,14 @@
 //! - [`Scene`]: the mesh, its topology and boundary BVH, the active field,
 //!   and per tetrahedron the 32-byte record a walk reads per step;
 //! - [`order`]: the Morton renumbering that keeps neighbouring cells
-//!   together in memory.
+//!   together in memory;
+//! - [`overlaps`]: the cells left out of the walk, composited in the
+//!   holes they leave.
 
 pub mod order;
+pub mod overlaps;
 mod scene;
 
 pub use order::Reorder;
+pub use overlaps::{MAX_OVERLAP_CROSSINGS, OverlapCrossing, Overlaps, window_segments};
 pub use scene::{CellOrder, FINAL_EXIT, Scene, SceneError, WalkTet};

@@ -11,6 +11,7 @@ use tetray_mesh::{
 };
 
 use crate::order::{Reorder, morton_reorder};
+use crate::overlaps::Overlaps;
 
 /// Why a [`Scene`] could not be made from a mesh.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -92,6 +93,8 @@ pub struct Scene {
     bounds: (Vec3, Vec3),
     /// The renumbering applied to the input mesh, if any.
     order: Option<Reorder>,
+    /// The cells left out of the walk, composited in their holes.
+    overlaps: Overlaps,
 }
 
 /// How [`Scene::new_with_order`] numbers points and tetrahedra.
@@ -201,6 +204,7 @@ impl Scene {
             points,
             bounds,
             order,
+            overlaps: Overlaps::default(),
         })
     }
 
@@ -211,7 +215,44 @@ impl Scene {
         field: &str,
         preset: BuildPreset,
     ) -> Result<Scene, SceneError> {
-        Scene::new(loaded.mesh, loaded.topology, field, preset)
+        let mut scene = Scene::new(loaded.mesh, loaded.topology, field, preset)?;
+        scene.set_overlaps(&loaded.overlaps)?;
+        Ok(scene)
+    }
+
+    /// Takes the tetrahedra of the cells left out of the walk
+    /// ([`LoadedMesh::overlaps`], over the input's points), to be
+    /// composited in the holes they leave (see [`crate::overlaps`]).
+    ///
+    /// # Errors
+    /// [`SceneError::PointOutOfRange`] (its `tet` the index in `tets`).
+    pub fn set_overlaps(&mut self, tets: &[[u32; 4]]) -> Result<(), SceneError> {
+        let points = self.points.len();
+        let out_of_range = |verts: &[u32; 4]| verts.iter().copied().find(|&v| v as usize >= points);
+        if let Some(tet) = first_position(tets, |v| out_of_range(v).is_some()) {
+            return Err(SceneError::PointOutOfRange {
+                tet,
+                point: out_of_range(&tets[tet]).unwrap_or_default(),
+                points,
+            });
+        }
+        let renumbered = match &self.order {
+            None => tets.to_vec(),
+            Some(order) => {
+                let mut to = vec![0u32; points];
+                for (new, &old) in order.point_from.iter().enumerate() {
+                    to[old as usize] = new as u32;
+                }
+                tets.iter().map(|t| t.map(|v| to[v as usize])).collect()
+            }
+        };
+        self.overlaps = Overlaps::new(renumbered, &self.points);
+        Ok(())
+    }
+
+    /// The tetrahedra of the cells left out of the walk.
+    pub fn overlaps(&self) -> &Overlaps {
+        &self.overlaps
     }
 
     /// The same scene with another point field of its mesh active: the
@@ -243,6 +284,7 @@ impl Scene {
             points,
             bounds: self.bounds,
             order: self.order.clone(),
+            overlaps: self.overlaps.clone(),
         })
     }
 

@@ -7,7 +7,7 @@
 const STORAGE_BINDINGS = 10;
 const TILE = 512;
 const WORKGROUP = 8;
-const STAT_COUNT = 8;
+const STAT_COUNT = 10;
 // Interval entries (vec4) per knot interval: the quantity is entries 2, 3.
 const INTERVAL_ENTRIES = 4;
 
@@ -103,7 +103,7 @@ class Raycaster {
       compute: { module, entryPoint: "main" },
     });
     this.params = device.createBuffer({
-      label: "params", size: 176, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST,
+      label: "params", size: 192, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST,
     });
     this.stride = Math.max(device.limits.minStorageBufferOffsetAlignment, 16);
   }
@@ -153,10 +153,10 @@ class Raycaster {
     return view;
   }
 
-  // WGSL Params (44 words) for the frame.
+  // WGSL Params (48 words) for the frame.
   writeParams(view, width, height, spec, method, scale) {
     const m = this.manifest;
-    const words = new ArrayBuffer(176);
+    const words = new ArrayBuffer(192);
     const f = new Float32Array(words);
     const u = new Uint32Array(words);
     f.set(view.position, 0); u[3] = view.orthographic ? 1 : 0;
@@ -176,6 +176,7 @@ class Raycaster {
     f[39] = preint ? (method.scale === "preintegrated" ? preint.length / scale : preint.length) : 1;
     u[40] = this.tets.first; u[41] = this.points.first;
     u[42] = m.prim_offset; u[43] = m.face_offset;
+    u[44] = m.overlap_offset; u[45] = m.overlap_count;
     this.device.queue.writeBuffer(this.params, 0, words);
   }
 

@@ -51,6 +51,9 @@ pub struct Manifest {
     pub scene_abs_max: f32,
     pub prim_offset: u32,
     pub face_offset: u32,
+    /// The left-out cells in the BVH array (`tetray_gpu::SceneData`).
+    pub overlap_offset: u32,
+    pub overlap_count: u32,
     /// The file's coordinates are `origin + point`.
     pub origin: [f64; 3],
     pub camera: CameraSpec,
@@ -237,6 +240,8 @@ pub fn bundle(setup: &Setup, options: &PageOptions) -> Result<Bundle, WebError> 
         scene_abs_max: data.scene_abs_max,
         prim_offset: data.prim_offset,
         face_offset: data.face_offset,
+        overlap_offset: data.overlap_offset,
+        overlap_count: data.overlap_count,
         origin: setup.extent.origin.to_array(),
         camera: CameraSpec::from(&setup.camera),
         size: [options.size.0, options.size.1],

@@ -73,7 +73,7 @@ mod tests {
             "name": "m", "field": "f", "range": [0.0, 1.0], "unit_distance": 1.0,
             "tet_count": tets, "point_count": points, "boundary_faces": 0,
             "bounds": [[0.0, 0.0, 0.0], [1.0, 1.0, 1.0]], "scene_abs_max": 1.0,
-            "prim_offset": 0, "face_offset": 0, "origin": [0.0, 0.0, 0.0],
+            "prim_offset": 0, "face_offset": 0, "overlap_offset": 0, "overlap_count": 0, "origin": [0.0, 0.0, 0.0],
             "camera": {"position": [0.0, 0.0, 1.0], "focal_point": [0.0, 0.0, 0.0],
                        "view_up": [0.0, 1.0, 0.0], "view_angle": 30.0, "parallel_scale": null},
             "size": [8, 8], "background": [1.0, 1.0, 1.0], "early_termination": 1.0,

@@ -19,6 +19,7 @@ use crate::upload::{IntegratorData, SceneData};
 use bvh::{SKIP_MAX, Skip, face_entry, first_entry};
 use integrate::{IntegratorInputs, sample_at, sample_near, segment_light};
 use predicate::{Ray, crossing, crossing_from, edge_sign_of, edge_value, make_ray, project};
+use tetray_scene::{MAX_OVERLAP_CROSSINGS, OverlapCrossing, window_segments};
 
 pub use integrate::{dawson, erfcx};
 
@@ -235,6 +236,8 @@ struct Counters {
     entries: u64,
     bound_hit: u64,
     failure: u64,
+    overlap_segments: u64,
+    overlap_overflow: u64,
     traffic: Traffic,
 }
 
@@ -291,8 +294,53 @@ impl Counters {
             self.entries,
             self.bound_hit,
             self.failure,
+            self.overlap_segments,
+            self.overlap_overflow,
         ]
     }
+}
+
+/// The kernel's `find_holes`: the left-out tetrahedra the ray's line
+/// crosses, the first `MAX_OVERLAP_CROSSINGS` (more marks an overflow).
+fn find_holes(input: &Inputs, ray: &Ray, counters: &mut Counters) -> Vec<OverlapCrossing> {
+    let p = input.params;
+    let mut holes = Vec::new();
+    if p.overlap_count == 0 {
+        return holes;
+    }
+    let at = |i: u32| Vec4::from_array(input.bvh[i as usize].map(f32::from_bits)).truncate();
+    let (lo, hi) = (at(p.overlap_offset), at(p.overlap_offset + 1));
+    let (mut near, mut far) = (-FAR, FAR);
+    for axis in 0..3 {
+        let (o, d) = (ray.origin[axis], ray.dir[axis]);
+        if d == 0.0 {
+            if o < lo[axis] || o > hi[axis] {
+                return holes;
+            }
+        } else {
+            let (a, b) = ((lo[axis] - o) / d, (hi[axis] - o) / d);
+            near = near.max(a.min(b));
+            far = far.min(a.max(b));
+        }
+    }
+    if near > far {
+        return holes;
+    }
+    for i in 0..p.overlap_count {
+        let ids = input.bvh[(p.overlap_offset + 2 + i) as usize];
+        let v = ids.map(|id| {
+            let q = input.point(id);
+            project(ray, q.truncate()).extend(q.w).to_array()
+        });
+        if let Some(c) = OverlapCrossing::of_tet(v) {
+            if holes.len() == MAX_OVERLAP_CROSSINGS {
+                counters.overlap_overflow = 1;
+                break;
+            }
+            holes.push(c);
+        }
+    }
+    holes
 }
 
 fn cast_ray(input: &Inputs, px: u32, py: u32) -> (Vec4, Counters) {
@@ -322,6 +370,7 @@ fn cast_ray(input: &Inputs, px: u32, py: u32) -> (Vec4, Counters) {
     let mut skip_t = 0.0f32;
     let mut done = false;
     let mut entry_count = 0;
+    let holes = find_holes(input, &ray, &mut counters);
     while entry_count < p.max_steps && !done {
         entry_count += 1;
         let t_query = if counters.entries > 0 {
@@ -331,6 +380,27 @@ fn cast_ray(input: &Inputs, px: u32, py: u32) -> (Vec4, Counters) {
             t_cursor
         };
         let entry = first_entry(input, &ray, t_query, FAR, &skip, &mut counters.traffic);
+        if !holes.is_empty() {
+            let end = if entry.found { entry.t } else { FAR };
+            let mut opaque = false;
+            window_segments(&holes, t_cursor.max(0.0), end, |_, front, back, length| {
+                if opaque {
+                    return;
+                }
+                let (f, b) = (
+                    sample_at(&input.integrator, front),
+                    sample_at(&input.integrator, back),
+                );
+                let light = segment_light(&input.integrator, &f, &b, length);
+                color += trans * light.emitted;
+                trans *= light.transmittance;
+                counters.overlap_segments += 1;
+                opaque = trans.x + trans.y + trans.z <= p.stop_below_sum;
+            });
+            if opaque {
+                break;
+            }
+        }
         if !entry.found {
             break;
         }
@@ -397,7 +467,7 @@ fn cast_ray(input: &Inputs, px: u32, py: u32) -> (Vec4, Counters) {
             let next = input.tets[2 * tet as usize + 1][f_out];
             counters.traffic.tet_bytes += RECORD_BYTES;
             if next >= tetray_scene::FINAL_EXIT {
-                done = next == tetray_scene::FINAL_EXIT;
+                done = next == tetray_scene::FINAL_EXIT && !holes.iter().any(|c| c.t_out > t_out);
                 t_cursor = t_out;
                 break;
             }

@@ -1,0 +1,114 @@
+//! The cells left out of the walk, composited in the gaps they leave
+//! (`tetray_scene::overlaps` for the rule): a ray finds the left-out
+//! tetrahedra it crosses once, at its first entry query, and fills each
+//! gap between an exit and the next entry with their pieces.
+
+use glam::{Vec3A, Vec4};
+use tetray_core::watertight::{Projector, RayFrame};
+use tetray_scene::{MAX_OVERLAP_CROSSINGS, OverlapCrossing, Scene, window_segments};
+
+use crate::walk::{RayCounters, RayLight, SegmentIntegrator, WalkLimits};
+
+/// The left-out tetrahedra one ray crosses.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Holes {
+    /// Whether [`Holes::find`] ran for the ray.
+    pub found: bool,
+    crossings: Vec<OverlapCrossing>,
+}
+
+/// What [`Holes::fill`] composited in one gap.
+pub(crate) struct Filled {
+    pub segments: u64,
+    /// Where the first piece starts.
+    pub depth: f32,
+    /// Whether the ray reached its early-termination opacity.
+    pub opaque: bool,
+}
+
+impl Holes {
+    pub fn clear(&mut self) {
+        self.found = false;
+        self.crossings.clear();
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.crossings.is_empty()
+    }
+
+    /// Whether a crossing reaches beyond distance `t`.
+    pub fn beyond(&self, t: f32) -> bool {
+        self.crossings.iter().any(|c| c.t_out > t)
+    }
+
+    /// Finds the left-out tetrahedra of `scene` that `ray` crosses, the
+    /// first [`MAX_OVERLAP_CROSSINGS`] in the scene's order (more marks the
+    /// ray's overflow).
+    pub fn find(
+        &mut self,
+        scene: &Scene,
+        ray: &RayFrame,
+        projector: &Projector,
+        counters: &mut RayCounters,
+    ) {
+        self.found = true;
+        let overlaps = scene.overlaps();
+        if !overlaps.line_meets_bounds(ray.origin, ray.dir) {
+            return;
+        }
+        let points = scene.point_records();
+        for tet in &overlaps.tets {
+            let v = tet.map(|i| {
+                let p = points[i as usize];
+                let q = projector.project(Vec4::from_array(p));
+                [q.x, q.y, q.z, p[3]]
+            });
+            if let Some(c) = OverlapCrossing::of_tet(v) {
+                if self.crossings.len() == MAX_OVERLAP_CROSSINGS {
+                    counters.overlap_overflow = true;
+                    break;
+                }
+                self.crossings.push(c);
+            }
+        }
+    }
+
+    /// Composites into `light` the pieces of the left-out cells in the gap
+    /// from `start` (clipped at the eye) to `end`.
+    pub fn fill<I: SegmentIntegrator + ?Sized>(
+        &self,
+        integrator: &I,
+        start: f32,
+        end: f32,
+        limits: WalkLimits,
+        light: &mut RayLight,
+        counters: &mut RayCounters,
+    ) -> Filled {
+        let mut filled = Filled {
+            segments: 0,
+            depth: 0.0,
+            opaque: false,
+        };
+        window_segments(
+            &self.crossings,
+            start.max(0.0),
+            end,
+            |t, front, back, length| {
+                if filled.opaque {
+                    return;
+                }
+                let (emitted, transmittance): (Vec3A, Vec3A) =
+                    integrator.segment(&integrator.sample(front), &integrator.sample(back), length);
+                light.color += light.transmittance * emitted;
+                light.transmittance *= transmittance;
+                if filled.segments == 0 {
+                    filled.depth = t;
+                }
+                filled.segments += 1;
+                counters.overlap_segments += 1;
+                filled.opaque = light.transmittance.element_sum() <= limits.stop_below_sum;
+            },
+        );
+        filled
+    }
+}
