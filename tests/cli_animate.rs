@@ -321,8 +321,8 @@ fn a_moving_mesh_is_made_anew() {
 
 /// Real time series: the crushed can (VTKHDF files whose points move over
 /// the same cells, so each step is made anew from the first step's view;
-/// the last step's topology is built too, because 39 of its cells are
-/// tangled and left out) and an Exodus file
+/// the last step's topology is built too, because some of its cells are
+/// folded, left out of the walk) and an Exodus file
 /// with three steps (netCDF-4; the steps share the mesh, so the later ones
 /// keep it) animate to MP4; ffprobe reads back one frame per step at the
 /// size asked.

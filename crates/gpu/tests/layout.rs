@@ -54,6 +54,8 @@ fn params_match_the_wgsl_struct() {
         point_chunk,
         prim_offset,
         face_offset,
+        overlap_offset,
+        overlap_count,
     );
     assert_eq!(members, rust, "member names and offsets");
     assert_eq!(span as usize, size_of::<Params>());

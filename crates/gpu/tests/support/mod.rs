@@ -50,7 +50,7 @@ pub struct Renders {
     pub gpu: Image,
     pub gpu_stats: GpuStats,
     pub twin: Image,
-    pub twin_stats: [u64; 8],
+    pub twin_stats: [u64; tetray_gpu::layout::STAT_COUNT],
     pub cpu: Image,
     pub cpu_stats: RenderStats,
 }
