@@ -18,7 +18,7 @@ const APEX_OTHERS = array<vec3<u32>, 4>(
 // prev << 8 (the vertices after and before the apex in the face), or
 // 0xffff where all signs agree (only a flat tetrahedron). The exit face is
 // the one whose edge apex -> next is positive and apex -> prev negative
-// (tetray_raycast's walk, where the table is derived).
+// (tetray_raycast::packed_exit_table derives the table).
 const APEX_EXITS = array<u32, 32>(
     0xffffu, 0x0312u, 0x0123u, 0x0312u, 0x0231u, 0x0231u, 0x0123u, 0xffffu,
     0xffffu, 0x0203u, 0x0320u, 0x0320u, 0x0032u, 0x0203u, 0x0032u, 0xffffu,

@@ -82,7 +82,7 @@ impl LoadReport {
         if !x.cells.is_empty() {
             parts.push(format!(
                 "{} cells left out ({} tangled, {} overlapping, {} non-manifold; {:.4}% of the \
-                 volume)",
+                 volume), composited by the ray casters in the holes they leave",
                 x.cells.len(),
                 x.tangled,
                 x.overlapping,

@@ -7,8 +7,6 @@ use glam::{Vec3A, Vec4};
 use tetray_core::watertight::{Projector, RayFrame};
 use tetray_scene::{MAX_OVERLAP_CROSSINGS, OverlapCrossing, Scene, window_segments};
 
-use crate::walk::{RayCounters, RayLight, SegmentIntegrator, WalkLimits};
-
 /// The left-out tetrahedra one ray crosses.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Holes {
@@ -42,19 +40,13 @@ impl Holes {
     }
 
     /// Finds the left-out tetrahedra of `scene` that `ray` crosses, the
-    /// first [`MAX_OVERLAP_CROSSINGS`] in the scene's order (more marks the
-    /// ray's overflow).
-    pub fn find(
-        &mut self,
-        scene: &Scene,
-        ray: &RayFrame,
-        projector: &Projector,
-        counters: &mut RayCounters,
-    ) {
+    /// first [`MAX_OVERLAP_CROSSINGS`] in the scene's order; returns
+    /// whether it crosses more (the ray's overflow).
+    pub fn find(&mut self, scene: &Scene, ray: &RayFrame, projector: &Projector) -> bool {
         self.found = true;
         let overlaps = scene.overlaps();
         if !overlaps.line_meets_bounds(ray.origin, ray.dir) {
-            return;
+            return false;
         }
         let points = scene.point_records();
         for tet in &overlaps.tets {
@@ -65,24 +57,27 @@ impl Holes {
             });
             if let Some(c) = OverlapCrossing::of_tet(v) {
                 if self.crossings.len() == MAX_OVERLAP_CROSSINGS {
-                    counters.overlap_overflow = true;
-                    break;
+                    return true;
                 }
                 self.crossings.push(c);
             }
         }
+        false
     }
 
-    /// Composites into `light` the pieces of the left-out cells in the gap
-    /// from `start` (clipped at the eye) to `end`.
-    pub fn fill<I: SegmentIntegrator + ?Sized>(
+    /// Composites into `color` and `transmittance` the pieces of the
+    /// left-out cells in the gap from `start` (clipped at the eye) to
+    /// `end`, each integrated by `segment(front scalar, back scalar,
+    /// length)`, until the transmittance channels sum to `stop_below_sum`
+    /// or less.
+    pub fn fill(
         &self,
-        integrator: &I,
         start: f32,
         end: f32,
-        limits: WalkLimits,
-        light: &mut RayLight,
-        counters: &mut RayCounters,
+        stop_below_sum: f32,
+        color: &mut Vec3A,
+        transmittance: &mut Vec3A,
+        segment: impl Fn(f32, f32, f32) -> (Vec3A, Vec3A),
     ) -> Filled {
         let mut filled = Filled {
             segments: 0,
@@ -97,16 +92,14 @@ impl Holes {
                 if filled.opaque {
                     return;
                 }
-                let (emitted, transmittance): (Vec3A, Vec3A) =
-                    integrator.segment(&integrator.sample(front), &integrator.sample(back), length);
-                light.color += light.transmittance * emitted;
-                light.transmittance *= transmittance;
+                let (emitted, passed) = segment(front, back, length);
+                *color += *transmittance * emitted;
+                *transmittance *= passed;
                 if filled.segments == 0 {
                     filled.depth = t;
                 }
                 filled.segments += 1;
-                counters.overlap_segments += 1;
-                filled.opaque = light.transmittance.element_sum() <= limits.stop_below_sum;
+                filled.opaque = transmittance.element_sum() <= stop_below_sum;
             },
         );
         filled

@@ -8,7 +8,6 @@ use tetray_boundary_bvh::reentry_start;
 use tetray_core::watertight::{Projector, RayFrame};
 use tetray_integrate::SampledSegment;
 use tetray_integrate::fastmath::max_f32;
-use tetray_mesh::FACE_VERTICES;
 
 use crate::entries::EntryList;
 use crate::face::{Face, Vertex, local_index};
@@ -105,92 +104,6 @@ pub(crate) struct Interval {
     /// origin (where its first segment starts).
     pub depth: f32,
     pub light: RayLight,
-}
-
-/// The GPU kernel's exit table, in the tetrahedron's local numbering (the
-/// CPU walk keeps the entry face in the ray's own cyclic order instead:
-/// [`crate::face`]). For apex `a` (the vertex opposite the entry face): its
-/// three other vertices in increasing order, and for each pattern of the signs of the
-/// edges apex -> k (bit `i` set when the edge to the `i`-th of them is
-/// positive) the exit face with the vertices following and preceding the
-/// apex in that face's counter-clockwise order, or `None` (all signs equal:
-/// only possible in a degenerate tetrahedron).
-struct ApexTable {
-    others: [usize; 3],
-    exits: [Option<(usize, usize, usize)>; 8],
-}
-
-const APEX_TABLES: [ApexTable; 4] = apex_tables();
-
-/// The exit table packed as the GPU kernel stores it: for apex `a` and sign
-/// code `c`, `face | next << 4 | prev << 8`, or `0xffff` for none.
-pub fn packed_exit_table() -> [[u32; 8]; 4] {
-    std::array::from_fn(|apex| {
-        std::array::from_fn(|code| match APEX_TABLES[apex].exits[code] {
-            Some((f, next, prev)) => (f | next << 4 | prev << 8) as u32,
-            None => 0xffff,
-        })
-    })
-}
-
-/// The exit face has all three edge signs positive. Its edge on the entry
-/// face is already positive (adjacent faces run a shared edge in opposite
-/// directions, signs are antisymmetric, and every entry face is all
-/// negative), so face `f` is the exit exactly when the edge apex -> next is
-/// positive and apex -> prev negative: three edge signs decide the exit.
-const fn apex_tables() -> [ApexTable; 4] {
-    let mut tables = [
-        ApexTable {
-            others: [1, 2, 3],
-            exits: [None; 8],
-        },
-        ApexTable {
-            others: [0, 2, 3],
-            exits: [None; 8],
-        },
-        ApexTable {
-            others: [0, 1, 3],
-            exits: [None; 8],
-        },
-        ApexTable {
-            others: [0, 1, 2],
-            exits: [None; 8],
-        },
-    ];
-    let mut apex = 0;
-    while apex < 4 {
-        let others = tables[apex].others;
-        let mut code = 0;
-        while code < 8 {
-            let mut f = 0;
-            while f < 4 {
-                if f != apex {
-                    let v = FACE_VERTICES[f];
-                    let mut i = 0;
-                    while v[i] != apex {
-                        i += 1;
-                    }
-                    let (next, prev) = (v[(i + 1) % 3], v[(i + 2) % 3]);
-                    if bit_of(others, code, next) && !bit_of(others, code, prev) {
-                        tables[apex].exits[code] = Some((f, next, prev));
-                    }
-                }
-                f += 1;
-            }
-            code += 1;
-        }
-        apex += 1;
-    }
-    tables
-}
-
-/// Whether `code` marks the edge to vertex `k` (one of `others`) positive.
-const fn bit_of(others: [usize; 3], code: usize, k: usize) -> bool {
-    let mut i = 0;
-    while others[i] != k {
-        i += 1;
-    }
-    code & (1 << i) != 0
 }
 
 /// Where a [`Walker`] is.
@@ -405,21 +318,24 @@ impl<S: Copy + Default> Walker<S> {
                 .bvh
                 .first_entry(&self.ray, t_query, f32::INFINITY, &self.skip),
         };
-        if !self.holes.found {
-            self.holes
-                .find(scene, &self.ray, &self.projector, &mut self.counters);
+        if !self.holes.found && self.holes.find(scene, &self.ray, &self.projector) {
+            self.counters.overlap_overflow = true;
         }
         if !self.holes.is_empty() {
             // The gap before this entry (or after the last exit).
             let gap_end = found.map_or(f32::INFINITY, |hit| hit.t);
+            let light = &mut self.light;
             let filled = self.holes.fill(
-                integrator,
                 self.t_cursor,
                 gap_end,
-                limits,
-                &mut self.light,
-                &mut self.counters,
+                limits.stop_below_sum,
+                &mut light.color,
+                &mut light.transmittance,
+                |front, back, length| {
+                    integrator.segment(&integrator.sample(front), &integrator.sample(back), length)
+                },
             );
+            self.counters.overlap_segments += filled.segments;
             if self.split && filled.segments > 0 {
                 // The gap's light is an interval of its own.
                 self.interval_depth = filled.depth;
