@@ -1,0 +1,181 @@
+#!/usr/bin/python3
+"""The image of a VTK XML unstructured grid rendered by VTK's
+unstructured-grid ray caster beside tetray's, with one transfer-function
+file read by both, and how far apart they are.
+
+VTK: vtkUnstructuredGridVolumeRayCastMapper on the grid split into
+tetrahedra (vtkDataSetTriangleFilter), its linear integrator (exact for
+linear scalars, as tetray's exact method), opacity per unit distance as
+VTK applies it (tetray's --opacity-mode vtk), ResetCamera, azimuth,
+elevation, every pixel cast, over black. tetray: `tetray render
+--renderer cpu --integrator exact` with VTK's camera (position, focal
+point, view up, view angle) and the same preset, unit distance and range.
+
+Printed per tetray binary: lit pixels (either image's alpha above 2/255),
+the share of them whose colour differs by more than 2/255 in some channel,
+the 99th percentile and the maximum of that difference; the images are
+written as PNG beside each other (--out).
+
+    target/python-venv/bin/python tools/vtk_image_diff.py data/real/can.vtu \\
+        --field EQPS --tetray target/release/tetray --out /tmp/can
+"""
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+
+import numpy as np
+
+
+def preset(lo, hi):
+    """A ParaView preset over [lo, hi]: blue to red, opacity rising."""
+    at = lambda t: lo + (hi - lo) * t
+    rgb = [at(0.0), 0.23, 0.30, 0.75, at(0.5), 0.87, 0.87, 0.87, at(1.0), 0.71, 0.02, 0.15]
+    points = [at(0.0), 0.05, 0.5, 0.0, at(0.6), 0.3, 0.5, 0.0, at(1.0), 0.9, 0.5, 0.0]
+    return [{"Name": "eqps-study", "ColorSpace": "RGB", "RGBPoints": rgb, "Points": points}]
+
+
+def point_grid(path, field):
+    """The grid with `field` as its active point scalars (a cell field
+    averaged to the points over the cells using each, as tetray does)."""
+    import vtk
+
+    reader = vtk.vtkXMLUnstructuredGridReader()
+    reader.SetFileName(path)
+    reader.Update()
+    grid = reader.GetOutput()
+    if grid.GetPointData().GetArray(field) is None:
+        to_points = vtk.vtkCellDataToPointData()
+        to_points.SetInputData(grid)
+        to_points.Update()
+        grid = to_points.GetOutput()
+    grid.GetPointData().SetActiveScalars(field)
+    return grid
+
+
+def vtk_render(path, field, tf, unit, size, azimuth, elevation):
+    import vtk
+    from vtk.util.numpy_support import vtk_to_numpy
+
+    grid = point_grid(path, field)
+    tets = vtk.vtkDataSetTriangleFilter()
+    tets.SetInputData(grid)
+    tets.Update()
+    color = vtk.vtkColorTransferFunction()
+    p = tf[0]["RGBPoints"]
+    for i in range(0, len(p), 4):
+        color.AddRGBPoint(p[i], p[i + 1], p[i + 2], p[i + 3])
+    opacity = vtk.vtkPiecewiseFunction()
+    p = tf[0]["Points"]
+    for i in range(0, len(p), 4):
+        opacity.AddPoint(p[i], p[i + 1])
+    prop = vtk.vtkVolumeProperty()
+    prop.SetColor(color)
+    prop.SetScalarOpacity(opacity)
+    prop.SetScalarOpacityUnitDistance(unit)
+    prop.SetInterpolationTypeToLinear()
+    prop.ShadeOff()
+    mapper = vtk.vtkUnstructuredGridVolumeRayCastMapper()
+    mapper.SetInputData(tets.GetOutput())
+    mapper.SetRayIntegrator(vtk.vtkUnstructuredGridLinearRayIntegrator())
+    mapper.SetImageSampleDistance(1.0)
+    mapper.AutoAdjustSampleDistancesOff()
+    volume = vtk.vtkVolume()
+    volume.SetMapper(mapper)
+    volume.SetProperty(prop)
+    renderer = vtk.vtkRenderer()
+    renderer.AddVolume(volume)
+    renderer.SetBackground(0, 0, 0)
+    window = vtk.vtkRenderWindow()
+    window.SetOffScreenRendering(1)
+    window.SetAlphaBitPlanes(1)
+    window.AddRenderer(renderer)
+    window.SetSize(size, size)
+    camera = renderer.GetActiveCamera()
+    renderer.ResetCamera()
+    camera.Azimuth(azimuth)
+    camera.Elevation(elevation)
+    camera.OrthogonalizeViewUp()
+    renderer.ResetCameraClippingRange()
+    window.Render()
+    grab = vtk.vtkWindowToImageFilter()
+    grab.SetInput(window)
+    grab.SetInputBufferTypeToRGBA()
+    grab.ReadFrontBufferOff()
+    grab.Update()
+    pixels = vtk_to_numpy(grab.GetOutput().GetPointData().GetScalars())
+    image = pixels.reshape(size, size, 4)[::-1].astype(np.float64) / 255.0
+    view = {
+        "position": camera.GetPosition(),
+        "focal": camera.GetFocalPoint(),
+        "up": camera.GetViewUp(),
+        "angle": camera.GetViewAngle(),
+    }
+    return image, view
+
+
+def tetray_render(binary, path, field, tf_path, unit, size, view, out):
+    xyz = lambda v: ",".join(repr(float(x)) for x in v)
+    args = [
+        binary, "render", path, "--scalar", field, "--renderer", "cpu",
+        "--integrator", "exact", "--tf", tf_path, "--no-rescale",
+        "--unit-distance", repr(unit), "--opacity-mode", "vtk",
+        "--camera-position", xyz(view["position"]), "--focal-point", xyz(view["focal"]),
+        "--view-up", xyz(view["up"]), "--view-angle", repr(view["angle"]),
+        "--size", f"{size}x{size}", "-o", out,
+    ]
+    run = subprocess.run(args, capture_output=True, text=True)
+    if run.returncode != 0:
+        sys.exit(f"{binary}: {run.stderr}")
+    return np.load(out).astype(np.float64)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("mesh")
+    parser.add_argument("--field", required=True)
+    parser.add_argument("--tetray", action="append", required=True)
+    parser.add_argument("--size", type=int, default=400)
+    parser.add_argument("--azimuth", type=float, default=30.0)
+    parser.add_argument("--elevation", type=float, default=20.0)
+    parser.add_argument("--out", default="vtk-image-diff")
+    args = parser.parse_args()
+    os.makedirs(args.out, exist_ok=True)
+
+    grid = point_grid(args.mesh, args.field)
+    lo, hi = grid.GetPointData().GetArray(args.field).GetRange()
+    b = grid.GetBounds()
+    diagonal = ((b[1] - b[0]) ** 2 + (b[3] - b[2]) ** 2 + (b[5] - b[4]) ** 2) ** 0.5
+    # ParaView's default unit distance: the diagonal over the cube root of
+    # the cell count.
+    unit = diagonal / grid.GetNumberOfCells() ** (1.0 / 3.0)
+    tf = preset(lo, hi)
+    tf_path = os.path.join(args.out, "tf.json")
+    with open(tf_path, "w") as f:
+        json.dump(tf, f)
+
+    reference, view = vtk_render(args.mesh, args.field, tf, unit, args.size, args.azimuth, args.elevation)
+    from PIL import Image
+
+    Image.fromarray((reference * 255).round().astype(np.uint8)).save(os.path.join(args.out, "vtk.png"))
+    print(f"{args.mesh} {args.field} range [{lo:.4g}, {hi:.4g}], unit distance {unit:.4g}, "
+          f"{args.size} x {args.size}, azimuth {args.azimuth}, elevation {args.elevation}")
+    print("| tetray | lit pixels | share > 2/255 | p99 | max |")
+    print("| --- | ---: | ---: | ---: | ---: |")
+    for k, binary in enumerate(args.tetray):
+        image = tetray_render(binary, args.mesh, args.field, tf_path, unit, args.size, view,
+                              os.path.join(args.out, f"tetray{k}.npy"))
+        # Premultiplied colour over black is what VTK's window shows.
+        rgb = np.clip(image[..., :3], 0.0, 1.0)
+        Image.fromarray((rgb * 255).round().astype(np.uint8)).save(os.path.join(args.out, f"tetray{k}.png"))
+        lit = (reference[..., 3] > 2 / 255) | (image[..., 3] > 2 / 255)
+        diff = np.abs(rgb - reference[..., :3]).max(axis=2)[lit]
+        share = float((diff > 2 / 255).mean())
+        print(f"| {binary} | {int(lit.sum())} | {100 * share:.2f}% | "
+              f"{np.percentile(diff, 99):.3f} | {diff.max():.3f} |")
+
+
+if __name__ == "__main__":
+    main()
