@@ -17,9 +17,9 @@
 //! the boundary BVH, as at a seam or a non-conforming interface.
 //!
 //! The tetrahedra of the cells left out are kept apart as overlaps
-//! ([`overlap_tets`]), each cell's turned so that their signed volumes sum
-//! to the volume its faces enclose: the ray casters fill the holes with
-//! them (`tetray_scene::Overlaps`).
+//! ([`overlap_tets`]), signed against the mesh's orientation so that their
+//! signed volumes sum to the volume their faces enclose: the ray casters
+//! fill the holes with them (`tetray_scene::Overlaps`).
 
 use rayon::prelude::*;
 
@@ -239,7 +239,11 @@ pub(crate) fn exclude_bad_cells(
     let left_out: Vec<usize> = (0..n)
         .filter(|&t| !shapes[t].1 && reason[cell_of(t) as usize].is_some())
         .collect();
-    let overlaps = overlap_tets(&given, &left_out, &|t| cell_of(t), &|t| shapes[t].0);
+    let volumes: Vec<f64> = shapes
+        .iter()
+        .map(|&(v, flat)| if flat { 0.0 } else { v })
+        .collect();
+    let overlaps = overlap_tets(&given, &left_out, &volumes);
     Ok(Exclusion {
         topology,
         excluded,
@@ -248,28 +252,22 @@ pub(crate) fn exclude_bad_cells(
     })
 }
 
-/// The tetrahedra `left_out` (indices into `tets`, ascending), each cell's
-/// turned (two vertices swapped) when the signed volumes of its
-/// tetrahedra sum below zero. A cell's tetrahedra then cover the region
-/// its faces enclose once, counted with signs: a tangled cell's inverted
-/// tetrahedra keep their negative volume, which cancels where they overlap
-/// its others, so that a constant field over them integrates to the
-/// enclosed volume's.
-fn overlap_tets(
-    tets: &[[u32; 4]],
-    left_out: &[usize],
-    cell_of: &dyn Fn(usize) -> u32,
-    volume: &dyn Fn(usize) -> f64,
-) -> Vec<[u32; 4]> {
-    let mut cell_volume: std::collections::HashMap<u32, f64> = std::collections::HashMap::new();
-    for &t in left_out {
-        *cell_volume.entry(cell_of(t)).or_insert(0.0) += volume(t);
-    }
+/// The tetrahedra `left_out` (indices into `tets`), each turned (two
+/// vertices swapped) when the mesh's tetrahedra are mostly negative
+/// (`volume`: signed volumes of every tetrahedron given). Measured against
+/// the mesh's own orientation, a left-out tetrahedron's sign is what it
+/// adds to the winding number of the cells' faces: a tangled cell's
+/// folded-back tetrahedra, or an inverted cell, count negative and cancel
+/// where they overlap the others, so that a constant field over all of
+/// them integrates to the volume the left-out cells' faces enclose (the
+/// hole they leave).
+fn overlap_tets(tets: &[[u32; 4]], left_out: &[usize], volume: &[f64]) -> Vec<[u32; 4]> {
+    let negative = volume.iter().sum::<f64>() < 0.0;
     left_out
         .iter()
         .map(|&t| {
             let mut tet = tets[t];
-            if cell_volume[&cell_of(t)] < 0.0 {
+            if negative {
                 tet.swap(2, 3);
             }
             tet

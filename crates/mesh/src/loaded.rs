@@ -113,7 +113,8 @@ pub struct LoadedMesh {
     pub report: LoadReport,
     /// The tetrahedra of the cells left out of the walk (tangled,
     /// overlapping, non-manifold; not the flat ones), over `mesh.points`,
-    /// each cell's with positive total signed volume: the ray casters
+    /// signed against the mesh's orientation (positive where the cells are
+    /// not inverted; see `exclude.rs`): the ray casters
     /// composite them where the walk leaves a hole
     /// (`tetray_scene::Overlaps`).
     pub overlaps: Vec<[u32; 4]>,
