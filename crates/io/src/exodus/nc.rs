@@ -44,6 +44,11 @@ impl<'a> Nc<'a> {
         usize::try_from(dim.size).ok()
     }
 
+    /// How many dimensions the file defines.
+    pub fn dimension_count(&self) -> usize {
+        self.file.dimensions().map_or(0, <[_]>::len)
+    }
+
     /// The size of a dimension the format requires.
     pub fn require_dim(&self, name: &str) -> Result<usize, ExodusError> {
         self.dim(name)
