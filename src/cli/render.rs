@@ -85,7 +85,14 @@ pub fn describe_stats(stats: &FrameStats, (width, height): (u32, u32)) -> String
             ""
         },
         stats.counters.segments as f64 / seconds.max(1e-12) / 1e6
-    )
+    ) + &if stats.counters.overlap_segments > 0 {
+        format!(
+            "; {} segments of left-out cells composited in their holes",
+            stats.counters.overlap_segments
+        )
+    } else {
+        String::new()
+    }
 }
 
 /// One line of the projection's stages.
@@ -124,6 +131,15 @@ pub fn warn_about(counters: &WalkCounters) {
             "warning: {} ray{} stopped in a tetrahedron with no exit face (a degenerate cell)",
             counters.walk_failures,
             scene::plural(counters.walk_failures as usize)
+        );
+    }
+    if counters.overlap_overflows > 0 {
+        eprintln!(
+            "warning: {} ray{} crossed more than {} tetrahedra of left-out cells; those beyond \
+             were not composited",
+            counters.overlap_overflows,
+            scene::plural(counters.overlap_overflows as usize),
+            tetray_scene::MAX_OVERLAP_CROSSINGS
         );
     }
 }
