@@ -294,8 +294,13 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(local_invocation
         atomicAdd(&group_stats[STAT_ENTRIES], c.entries);
         atomicAdd(&group_stats[STAT_BOUND_HITS], c.bound_hit);
         atomicAdd(&group_stats[STAT_WALK_FAILURES], c.failure);
-        atomicAdd(&group_stats[STAT_OVERLAP_SEGMENTS], c.overlap_segments);
-        atomicAdd(&group_stats[STAT_OVERLAP_OVERFLOWS], c.overlap_overflow);
+        // Rarely nonzero: an atomic only where there is something to add.
+        if (c.overlap_segments != 0u) {
+            atomicAdd(&group_stats[STAT_OVERLAP_SEGMENTS], c.overlap_segments);
+        }
+        if (c.overlap_overflow != 0u) {
+            atomicAdd(&group_stats[STAT_OVERLAP_OVERFLOWS], c.overlap_overflow);
+        }
     }
     workgroupBarrier();
     if (lid == 0u) {

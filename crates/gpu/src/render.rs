@@ -3,6 +3,7 @@
 //! and the counters.
 
 use std::ops::Range;
+use std::sync::OnceLock;
 use std::time::Duration;
 
 use tetray_core::{Camera, Image, WalkCounters};
@@ -10,7 +11,7 @@ use wgpu::util::DeviceExt;
 
 use crate::layout::{self, Params, SceneLayout, Tile, ViewParams};
 use crate::readback::{PassTimestamps, read_buffer, readback_buffer};
-use crate::shaders::raycast_source;
+use crate::shaders::{raycast_source, raycast_source_without_overlaps};
 use crate::upload::{GpuIntegrator, GpuScene, IntegratorData};
 use crate::{GpuContext, GpuError, GpuTarget};
 
@@ -69,18 +70,19 @@ pub struct GpuFrame {
 
 /// The compiled kernel and its binding layout.
 pub struct GpuRaycaster {
+    /// The kernel for scenes with no cells left out of the walk.
     pipeline: wgpu::ComputePipeline,
+    /// The kernel with the overlap lists, compiled for the first scene
+    /// that has left-out cells.
+    with_overlaps: OnceLock<wgpu::ComputePipeline>,
+    pipeline_layout: wgpu::PipelineLayout,
+    device: wgpu::Device,
     layout: wgpu::BindGroupLayout,
 }
 
 impl GpuRaycaster {
     pub fn new(ctx: &GpuContext) -> Result<GpuRaycaster, GpuError> {
         let device = &ctx.device;
-        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("raycast.wgsl"),
-            source: wgpu::ShaderSource::Wgsl(raycast_source().into()),
-        });
         let storage = |binding: u32, read_only: bool| wgpu::BindGroupLayoutEntry {
             binding,
             visibility: wgpu::ShaderStages::COMPUTE,
@@ -132,18 +134,27 @@ impl GpuRaycaster {
             bind_group_layouts: &[Some(&layout)],
             immediate_size: 0,
         });
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("raycast"),
-            layout: Some(&pipeline_layout),
-            module: &module,
-            entry_point: Some("main"),
-            compilation_options: Default::default(),
-            cache: None,
-        });
-        if let Some(error) = pollster::block_on(scope.pop()) {
-            return Err(GpuError::Driver(error.to_string()));
+        let pipeline = compile(device, &pipeline_layout, &raycast_source_without_overlaps())?;
+        Ok(GpuRaycaster {
+            pipeline,
+            with_overlaps: OnceLock::new(),
+            pipeline_layout,
+            device: device.clone(),
+            layout,
+        })
+    }
+
+    /// The kernel for `scene`: with the overlap lists when it has cells
+    /// left out of the walk.
+    fn pipeline_for(&self, scene: &GpuScene) -> Result<&wgpu::ComputePipeline, GpuError> {
+        if scene.overlap_count == 0 {
+            return Ok(&self.pipeline);
         }
-        Ok(GpuRaycaster { pipeline, layout })
+        if let Some(pipeline) = self.with_overlaps.get() {
+            return Ok(pipeline);
+        }
+        let pipeline = compile(&self.device, &self.pipeline_layout, &raycast_source())?;
+        Ok(self.with_overlaps.get_or_init(|| pipeline))
     }
 
     /// Renders `scene` seen by `camera` with `integrator` and reads the
@@ -270,7 +281,7 @@ impl GpuRaycaster {
             label: Some("raycast"),
             timestamp_writes,
         });
-        pass.set_pipeline(&self.pipeline);
+        pass.set_pipeline(self.pipeline_for(job.scene)?);
         for (i, tile) in tiles.tiles.iter().enumerate() {
             pass.set_bind_group(0, &bind_group, &[(i as u64 * stride) as u32]);
             pass.dispatch_workgroups(
@@ -411,4 +422,30 @@ fn buffer_entry(binding: u32, buffer: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_>
         binding,
         resource: buffer.as_entire_binding(),
     }
+}
+
+/// Compiles the ray-casting kernel `source` for `layout`; a validation
+/// error of the driver is an error, not a panic.
+fn compile(
+    device: &wgpu::Device,
+    layout: &wgpu::PipelineLayout,
+    source: &str,
+) -> Result<wgpu::ComputePipeline, GpuError> {
+    let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("raycast.wgsl"),
+        source: wgpu::ShaderSource::Wgsl(source.into()),
+    });
+    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some("raycast"),
+        layout: Some(layout),
+        module: &module,
+        entry_point: Some("main"),
+        compilation_options: Default::default(),
+        cache: None,
+    });
+    if let Some(error) = pollster::block_on(scope.pop()) {
+        return Err(GpuError::Driver(error.to_string()));
+    }
+    Ok(pipeline)
 }

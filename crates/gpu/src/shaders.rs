@@ -15,6 +15,8 @@ pub const BVH: &str = include_str!("../../../shaders/bvh.wgsl");
 pub const INTEGRATE: &str = include_str!("../../../shaders/integrate.wgsl");
 /// The cells left out of the walk, composited in the gaps they leave.
 pub const OVERLAPS: &str = include_str!("../../../shaders/overlaps.wgsl");
+/// The same functions for a scene with no cells left out: no overlap lists.
+pub const NO_OVERLAPS: &str = include_str!("../../../shaders/no_overlaps.wgsl");
 /// The per-pixel kernel: entry, walk, compositing, counters.
 pub const RAYCAST: &str = include_str!("../../../shaders/raycast.wgsl");
 
@@ -32,4 +34,12 @@ pub fn module(pieces: &[&str]) -> String {
 /// The ray-casting module: every piece, in order.
 pub fn raycast_source() -> String {
     module(&[COMMON, PREDICATE, BVH, INTEGRATE, OVERLAPS, RAYCAST])
+}
+
+/// The ray-casting module for scenes with no cells left out of the walk
+/// ([`NO_OVERLAPS`] in place of [`OVERLAPS`]): the same images, without
+/// the per-invocation overlap lists (measured on lavapipe: the Blunt Fin's
+/// frame 7-17% slower with them).
+pub fn raycast_source_without_overlaps() -> String {
+    module(&[COMMON, PREDICATE, BVH, INTEGRATE, NO_OVERLAPS, RAYCAST])
 }
