@@ -241,3 +241,19 @@ fn every_corrupted_byte_is_an_error_or_a_read() {
         }
     }
 }
+
+/// Found by the `hdf5_formats` fuzz target: a 31 kB file whose `Steps`
+/// group has no `Values` and declares `NSteps` = 2^32 + 2; the reader made
+/// that many times (32 GB). A count that is not a whole number up to 2^32
+/// is one error; a smaller one goes through the memory preflight.
+#[test]
+fn a_huge_step_count_is_one_error() {
+    let e = load(
+        &data("fuzz/vtkhdf-huge-step-count.vtkhdf"),
+        &LoadOptions::default(),
+    )
+    .expect_err("no file has that many steps");
+    let text = e.to_string();
+    assert!(text.contains("vtkhdf-huge-step-count.vtkhdf"), "{text}");
+    assert!(text.contains("NSteps is 4294967298"), "{text}");
+}

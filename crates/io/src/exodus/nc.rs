@@ -44,6 +44,11 @@ impl<'a> Nc<'a> {
         usize::try_from(dim.size).ok()
     }
 
+    /// How many variables the file defines.
+    pub fn variable_count(&self) -> usize {
+        self.file.variables().map_or(0, <[_]>::len)
+    }
+
     /// How many dimensions the file defines.
     pub fn dimension_count(&self) -> usize {
         self.file.dimensions().map_or(0, <[_]>::len)

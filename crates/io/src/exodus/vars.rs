@@ -42,6 +42,28 @@ pub(super) fn choose_step(
     })
 }
 
+/// The size of the variable-count dimension `dim`, checked against what
+/// the file can hold: each variable is a variable of the file of its own
+/// (`vals_nod_var1`, `vals_elem_var1eb1`...) or a row of the `combined`
+/// one, whose own dimension it then sizes. A larger count is a header's
+/// claim (the names and lists made for it would be that long).
+fn variable_count(nc: &Nc, dim: &str, combined: Option<&str>) -> Result<usize, ExodusError> {
+    let count = nc.dim(dim).unwrap_or(0);
+    let in_combined = combined.is_some_and(|name| nc.var(name).is_some());
+    let variables = nc.variable_count();
+    if count > variables && !in_combined {
+        return Err(ExodusError::Invalid {
+            file: nc.name.into(),
+            what: format!("dimension \"{dim}\""),
+            message: format!(
+                "is {count}, more than the {variables} variables the file defines (each \
+                 variable is one of them)"
+            ),
+        });
+    }
+    Ok(count)
+}
+
 /// Variable names from `name_*_var`, or `<fallback><n>` where a name is
 /// absent or blank.
 fn variable_names(
@@ -75,7 +97,7 @@ pub(super) fn nodal_variables(
     num_nodes: usize,
     warnings: &mut Vec<String>,
 ) -> Result<Vec<CellArray>, ExodusError> {
-    let count = nc.dim("num_nod_var").unwrap_or(0);
+    let count = variable_count(nc, "num_nod_var", Some("vals_nod_var"))?;
     let names = variable_names(nc, "name_nod_var", count, "nodal_variable_")?;
     let mut arrays = Vec::with_capacity(count);
     for (i, name) in names.into_iter().enumerate() {
@@ -112,7 +134,7 @@ pub(super) fn element_variables(
     kept: &[KeptBlock],
     warnings: &mut Vec<String>,
 ) -> Result<Vec<CellArray>, ExodusError> {
-    let count = nc.dim("num_elem_var").unwrap_or(0);
+    let count = variable_count(nc, "num_elem_var", None)?;
     if count == 0 {
         return Ok(Vec::new());
     }

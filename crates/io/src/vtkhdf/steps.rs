@@ -32,6 +32,15 @@ impl Steps {
                     file: h5.name.clone(),
                     what: "Steps/Values or the NSteps attribute".into(),
                 })?;
+                if !(n >= 0.0 && n.fract() == 0.0 && n <= u32::MAX as f64) {
+                    return Err(h5.invalid("Steps", format!("NSteps is {n}, not a step count")));
+                }
+                // The times are made from the count alone: a header's claim.
+                crate::preflight::check(
+                    &h5.name,
+                    || format!("the {n} time steps NSteps declares"),
+                    (n as u64).saturating_mul(8),
+                )?;
                 (0..n as usize).map(|i| i as f64).collect()
             }
         };
