@@ -5,7 +5,7 @@
 
 use glam::{Vec3A, Vec4};
 use tetray_core::watertight::{Projector, RayFrame};
-use tetray_scene::{MAX_OVERLAP_CROSSINGS, OverlapCrossing, Scene, window_segments};
+use tetray_scene::{OverlapCrossing, Scene, collect_crossings, window_segments};
 
 /// The left-out tetrahedra one ray crosses.
 #[derive(Debug, Clone, Default)]
@@ -49,20 +49,12 @@ impl Holes {
             return false;
         }
         let points = scene.point_records();
-        for tet in &overlaps.tets {
-            let v = tet.map(|i| {
-                let p = points[i as usize];
-                let q = projector.project(Vec4::from_array(p));
-                [q.x, q.y, q.z, p[3]]
-            });
-            if let Some(c) = OverlapCrossing::of_tet(v) {
-                if self.crossings.len() == MAX_OVERLAP_CROSSINGS {
-                    return true;
-                }
-                self.crossings.push(c);
-            }
-        }
-        false
+        let vertex = |i: u32| {
+            let p = points[i as usize];
+            let q = projector.project(Vec4::from_array(p));
+            [q.x, q.y, q.z, p[3]]
+        };
+        collect_crossings(&overlaps.tets, vertex, &mut self.crossings)
     }
 
     /// Composites into `color` and `transmittance` the pieces of the

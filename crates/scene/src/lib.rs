@@ -14,5 +14,8 @@ pub mod overlaps;
 mod scene;
 
 pub use order::Reorder;
-pub use overlaps::{MAX_OVERLAP_CROSSINGS, OverlapCrossing, Overlaps, window_segments};
+pub use overlaps::{
+    MAX_OVERLAP_CROSSINGS, OverlapCrossing, Overlaps, collect_crossings, line_meets_box,
+    window_segments,
+};
 pub use scene::{CellOrder, FINAL_EXIT, Scene, SceneError, WalkTet};

@@ -70,7 +70,7 @@ fn sort_keys(keys: &mut [u64]) {
 /// The inverse of the permutation `from` (`to[from[new]] = new`). Large
 /// ones are written in parallel: every slot once, by relaxed atomic stores
 /// (plain stores on x86).
-fn inverse(from: &[u32]) -> Vec<u32> {
+pub(crate) fn inverse(from: &[u32]) -> Vec<u32> {
     if from.len() < LARGE {
         let mut to = vec![0u32; from.len()];
         for (new, &old) in from.iter().enumerate() {

@@ -2,9 +2,9 @@
 //! `tetray_mesh`'s exclusion), composited where the walk leaves a hole.
 //!
 //! A left-out cell leaves a hole in the walked mesh, bounded by its faces.
-//! Its tetrahedra are kept with the signs of their volumes (a tangled
-//! cell's inverted ones negative, each cell turned so that its total is
-//! positive). Along a ray, each tetrahedron crossed gives an interval with
+//! Its tetrahedra are kept with the signs of their volumes against the
+//! mesh's orientation (a tangled cell's folded-back ones, or an inverted
+//! cell's, negative). Along a ray, each tetrahedron crossed gives an interval with
 //! its sign and the scalar linear over it. Between two boundary crossings
 //! of the walk (a gap, where the walk's mesh has nothing), the ray is cut
 //! at every interval end; on each piece the signs of the intervals
@@ -17,9 +17,10 @@
 //! cell's pieces overlap, their scalars are blended by sign.
 //!
 //! The CPU ray caster and the GPU kernel (`shaders/overlaps.wgsl`) do the
-//! same operations: [`OverlapCrossing::of_tet`] per tetrahedron once per
-//! ray, at most [`MAX_OVERLAP_CROSSINGS`] kept (a ray that meets more
-//! counts an overflow), then [`window_segments`] per gap.
+//! same operations: [`line_meets_box`] against the bounds of the left-out
+//! points, [`collect_crossings`] once per ray (at most
+//! [`MAX_OVERLAP_CROSSINGS`] kept; a ray that meets more counts an
+//! overflow), then [`window_segments`] per gap.
 
 use glam::Vec3;
 use tetray_mesh::FACE_VERTICES;
@@ -65,25 +66,48 @@ impl Overlaps {
     /// too, since a walk may start behind it).
     pub fn line_meets_bounds(&self, origin: Vec3, dir: Vec3) -> bool {
         let (lo, hi) = self.bounds;
-        if self.tets.is_empty() {
-            return false;
-        }
-        let mut near = f32::NEG_INFINITY;
-        let mut far = f32::INFINITY;
-        for axis in 0..3 {
-            let (o, d) = (origin[axis], dir[axis]);
-            if d == 0.0 {
-                if o < lo[axis] || o > hi[axis] {
-                    return false;
-                }
-                continue;
-            }
-            let (a, b) = ((lo[axis] - o) / d, (hi[axis] - o) / d);
-            near = near.max(a.min(b));
-            far = far.min(a.max(b));
-        }
-        near <= far
+        !self.tets.is_empty() && line_meets_box(lo, hi, origin, dir)
     }
+}
+
+/// Whether the line `origin + t dir` (any `t`) meets the box `[lo, hi]`:
+/// the slab test the kernel's `find_holes` makes.
+pub fn line_meets_box(lo: Vec3, hi: Vec3, origin: Vec3, dir: Vec3) -> bool {
+    let mut near = f32::NEG_INFINITY;
+    let mut far = f32::INFINITY;
+    for axis in 0..3 {
+        let (o, d) = (origin[axis], dir[axis]);
+        if d == 0.0 {
+            if o < lo[axis] || o > hi[axis] {
+                return false;
+            }
+            continue;
+        }
+        let (a, b) = ((lo[axis] - o) / d, (hi[axis] - o) / d);
+        near = near.max(a.min(b));
+        far = far.min(a.max(b));
+    }
+    near <= far
+}
+
+/// Appends to `out` the crossings of the tetrahedra `tets` (in order) by a
+/// ray, each tetrahedron's vertices given by `vertex` (projected into the
+/// ray's frame, the scalar in the fourth lane), until `out` holds
+/// [`MAX_OVERLAP_CROSSINGS`]; returns whether a crossing was left out.
+pub fn collect_crossings(
+    tets: &[[u32; 4]],
+    vertex: impl Fn(u32) -> [f32; 4],
+    out: &mut Vec<OverlapCrossing>,
+) -> bool {
+    for tet in tets {
+        if let Some(c) = OverlapCrossing::of_tet(tet.map(&vertex)) {
+            if out.len() == MAX_OVERLAP_CROSSINGS {
+                return true;
+            }
+            out.push(c);
+        }
+    }
+    false
 }
 
 /// Where a ray crosses one left-out tetrahedron.

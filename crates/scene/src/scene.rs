@@ -10,7 +10,7 @@ use tetray_mesh::{
     FACE_VERTICES, LoadedMesh, NO_NEIGHBOR, ScalarField, TetMesh, Topology, first_position,
 };
 
-use crate::order::{Reorder, morton_reorder};
+use crate::order::{Reorder, inverse, morton_reorder};
 use crate::overlaps::Overlaps;
 
 /// Why a [`Scene`] could not be made from a mesh.
@@ -154,15 +154,7 @@ impl Scene {
                 coords: mesh.points[point].to_array(),
             });
         }
-        let points = mesh.points.len();
-        let out_of_range = |verts: &[u32; 4]| verts.iter().copied().find(|&v| v as usize >= points);
-        if let Some(tet) = first_position(&mesh.tets, |v| out_of_range(v).is_some()) {
-            return Err(SceneError::PointOutOfRange {
-                tet,
-                point: out_of_range(&mesh.tets[tet]).unwrap_or_default(),
-                points,
-            });
-        }
+        check_points_in_range(&mesh.tets, mesh.points.len())?;
         // With the Morton order the records are built (and checked) after
         // the renumbering, which needs only the neighbours in range; an
         // error names the input's ids.
@@ -227,23 +219,14 @@ impl Scene {
     /// # Errors
     /// [`SceneError::PointOutOfRange`] (its `tet` the index in `tets`).
     pub fn set_overlaps(&mut self, tets: &[[u32; 4]]) -> Result<(), SceneError> {
-        let points = self.points.len();
-        let out_of_range = |verts: &[u32; 4]| verts.iter().copied().find(|&v| v as usize >= points);
-        if let Some(tet) = first_position(tets, |v| out_of_range(v).is_some()) {
-            return Err(SceneError::PointOutOfRange {
-                tet,
-                point: out_of_range(&tets[tet]).unwrap_or_default(),
-                points,
-            });
-        }
+        check_points_in_range(tets, self.points.len())?;
         let renumbered = match &self.order {
             None => tets.to_vec(),
             Some(order) => {
-                let mut to = vec![0u32; points];
-                for (new, &old) in order.point_from.iter().enumerate() {
-                    to[old as usize] = new as u32;
-                }
-                tets.iter().map(|t| t.map(|v| to[v as usize])).collect()
+                let point_to = inverse(&order.point_from);
+                tets.iter()
+                    .map(|t| t.map(|v| point_to[v as usize]))
+                    .collect()
             }
         };
         self.overlaps = Overlaps::new(renumbered, &self.points);
@@ -383,6 +366,22 @@ impl Scene {
     #[inline]
     pub fn point_records(&self) -> &[[f32; 4]] {
         &self.points
+    }
+}
+
+/// Checks every tetrahedron of `tets` refers to one of `points` points.
+///
+/// # Errors
+/// [`SceneError::PointOutOfRange`] for the first that does not.
+fn check_points_in_range(tets: &[[u32; 4]], points: usize) -> Result<(), SceneError> {
+    let out_of_range = |verts: &[u32; 4]| verts.iter().copied().find(|&v| v as usize >= points);
+    match first_position(tets, |v| out_of_range(v).is_some()) {
+        Some(tet) => Err(SceneError::PointOutOfRange {
+            tet,
+            point: out_of_range(&tets[tet]).unwrap_or_default(),
+            points,
+        }),
+        None => Ok(()),
     }
 }
 

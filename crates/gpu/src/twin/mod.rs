@@ -19,7 +19,7 @@ use crate::upload::{IntegratorData, SceneData};
 use bvh::{SKIP_MAX, Skip, face_entry, first_entry};
 use integrate::{IntegratorInputs, sample_at, sample_near, segment_light};
 use predicate::{Ray, crossing, crossing_from, edge_sign_of, edge_value, make_ray, project};
-use tetray_scene::{MAX_OVERLAP_CROSSINGS, OverlapCrossing, window_segments};
+use tetray_scene::{OverlapCrossing, collect_crossings, line_meets_box, window_segments};
 
 pub use integrate::{dawson, erfcx};
 
@@ -310,35 +310,17 @@ fn find_holes(input: &Inputs, ray: &Ray, counters: &mut Counters) -> Vec<Overlap
     }
     let at = |i: u32| Vec4::from_array(input.bvh[i as usize].map(f32::from_bits)).truncate();
     let (lo, hi) = (at(p.overlap_offset), at(p.overlap_offset + 1));
-    let (mut near, mut far) = (-FAR, FAR);
-    for axis in 0..3 {
-        let (o, d) = (ray.origin[axis], ray.dir[axis]);
-        if d == 0.0 {
-            if o < lo[axis] || o > hi[axis] {
-                return holes;
-            }
-        } else {
-            let (a, b) = ((lo[axis] - o) / d, (hi[axis] - o) / d);
-            near = near.max(a.min(b));
-            far = far.min(a.max(b));
-        }
-    }
-    if near > far {
+    if !line_meets_box(lo, hi, ray.origin, ray.dir) {
         return holes;
     }
-    for i in 0..p.overlap_count {
-        let ids = input.bvh[(p.overlap_offset + 2 + i) as usize];
-        let v = ids.map(|id| {
-            let q = input.point(id);
-            project(ray, q.truncate()).extend(q.w).to_array()
-        });
-        if let Some(c) = OverlapCrossing::of_tet(v) {
-            if holes.len() == MAX_OVERLAP_CROSSINGS {
-                counters.overlap_overflow = 1;
-                break;
-            }
-            holes.push(c);
-        }
+    let start = (p.overlap_offset + 2) as usize;
+    let tets = &input.bvh[start..start + p.overlap_count as usize];
+    let vertex = |id: u32| {
+        let q = input.point(id);
+        project(ray, q.truncate()).extend(q.w).to_array()
+    };
+    if collect_crossings(tets, vertex, &mut holes) {
+        counters.overlap_overflow = 1;
     }
     holes
 }
