@@ -17,7 +17,7 @@
 //! the boundary BVH, as at a seam or a non-conforming interface.
 //!
 //! The tetrahedra of the cells left out are kept apart as overlaps
-//! ([`overlap_tets`]), signed against the mesh's orientation so that their
+//! ([`orient_overlaps`]), signed against the mesh's orientation so that their
 //! signed volumes sum to the volume their faces enclose: the ray casters
 //! fill the holes with them (`tetray_scene::Overlaps`).
 
@@ -113,7 +113,7 @@ pub(crate) struct Exclusion {
     pub excluded: ExcludedCells,
     /// Tetrahedra reoriented.
     pub reoriented: usize,
-    /// The tetrahedra of the cells left out (see [`overlap_tets`]).
+    /// The tetrahedra of the cells left out (see [`orient_overlaps`]).
     pub overlaps: Vec<[u32; 4]>,
 }
 
@@ -216,12 +216,21 @@ pub(crate) fn exclude_bad_cells(
         flat_tets,
         ..ExcludedCells::default()
     };
+    // The left-out tetrahedra as given, and the signed volume of all
+    // tetrahedra (the mesh's orientation, see `orient_overlaps`).
+    let mut overlaps = Vec::new();
+    let mut signed_volume = 0.0;
     for (t, &(volume, flat)) in shapes.iter().enumerate() {
-        if !flat && reason[cell_of(t) as usize].is_some() {
-            excluded.tets += 1;
+        if flat {
+            continue;
+        }
+        signed_volume += volume;
+        if reason[cell_of(t) as usize].is_some() {
             excluded.volume += volume.abs();
+            overlaps.push(given[t]);
         }
     }
+    excluded.tets = overlaps.len();
     for (c, r) in reason.iter().enumerate() {
         let Some(r) = r else { continue };
         excluded.cells.push(c as u32);
@@ -236,14 +245,7 @@ pub(crate) fn exclude_bad_cells(
     } else {
         0.0
     };
-    let left_out: Vec<usize> = (0..n)
-        .filter(|&t| !shapes[t].1 && reason[cell_of(t) as usize].is_some())
-        .collect();
-    let volumes: Vec<f64> = shapes
-        .iter()
-        .map(|&(v, flat)| if flat { 0.0 } else { v })
-        .collect();
-    let overlaps = overlap_tets(&given, &left_out, &volumes);
+    orient_overlaps(&mut overlaps, signed_volume);
     Ok(Exclusion {
         topology,
         excluded,
@@ -252,25 +254,18 @@ pub(crate) fn exclude_bad_cells(
     })
 }
 
-/// The tetrahedra `left_out` (indices into `tets`), each turned (two
-/// vertices swapped) when the mesh's tetrahedra are mostly negative
-/// (`volume`: signed volumes of every tetrahedron given). Measured against
-/// the mesh's own orientation, a left-out tetrahedron's sign is what it
-/// adds to the winding number of the cells' faces: a tangled cell's
-/// folded-back tetrahedra, or an inverted cell, count negative and cancel
-/// where they overlap the others, so that a constant field over all of
-/// them integrates to the volume the left-out cells' faces enclose (the
-/// hole they leave).
-fn overlap_tets(tets: &[[u32; 4]], left_out: &[usize], volume: &[f64]) -> Vec<[u32; 4]> {
-    let negative = volume.iter().sum::<f64>() < 0.0;
-    left_out
-        .iter()
-        .map(|&t| {
-            let mut tet = tets[t];
-            if negative {
-                tet.swap(2, 3);
-            }
-            tet
-        })
-        .collect()
+/// Turns the left-out tetrahedra `tets` (two vertices swapped) when the
+/// mesh's tetrahedra are mostly negative (`signed_volume`: the sum of all
+/// their signed volumes). Measured against the mesh's own orientation, a
+/// left-out tetrahedron's sign is what it adds to the winding number of
+/// the cells' faces: a tangled cell's folded-back tetrahedra, or an
+/// inverted cell, count negative and cancel where they overlap the others,
+/// so that a constant field over all of them integrates to the volume the
+/// left-out cells' faces enclose (the hole they leave).
+fn orient_overlaps(tets: &mut [[u32; 4]], signed_volume: f64) {
+    if signed_volume < 0.0 {
+        for tet in tets {
+            tet.swap(2, 3);
+        }
+    }
 }

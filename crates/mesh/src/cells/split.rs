@@ -33,7 +33,7 @@ use super::cell_types::CellKind;
 type Point = [f64; 3];
 
 /// VTK hexahedron corners (points 0-3 the bottom quad, 4-7 above them).
-const HEX_REF: [Point; 8] = [
+pub(super) const HEX_REF: [Point; 8] = [
     [0., 0., 0.],
     [1., 0., 0.],
     [1., 1., 0.],

@@ -12,7 +12,7 @@
 
 use glam::DVec3;
 
-use super::split::{HEX_FACES, quad_triangles};
+use super::split::{HEX_FACES, HEX_REF, quad_triangles};
 
 /// Parametric candidates per axis: 8^3 points at the centres of a regular
 /// 8 x 8 x 8 subdivision of the reference cube.
@@ -77,35 +77,23 @@ pub fn hexahedron_centred(ids: &[u32], xyz: &[f64]) -> Option<CentredSplit> {
 }
 
 /// The trilinear weights of the VTK hexahedron's corners at parametric
-/// point (r, s, t).
+/// point (r, s, t): per corner of the reference cell, the product over the
+/// axes of the coordinate where the corner is at 1, its complement at 0.
 fn trilinear_weights(r: f64, s: f64, t: f64) -> [f64; 8] {
-    let (a, b, c) = (1.0 - r, 1.0 - s, 1.0 - t);
-    [
-        a * b * c,
-        r * b * c,
-        r * s * c,
-        a * s * c,
-        a * b * t,
-        r * b * t,
-        r * s * t,
-        a * s * t,
-    ]
+    let x = [r, s, t];
+    HEX_REF.map(|corner| {
+        (0..3)
+            .map(|a| if corner[a] == 1.0 { x[a] } else { 1.0 - x[a] })
+            .product()
+    })
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    const CUBE: [[f64; 3]; 8] = [
-        [0., 0., 0.],
-        [1., 0., 0.],
-        [1., 1., 0.],
-        [0., 1., 0.],
-        [0., 0., 1.],
-        [1., 0., 1.],
-        [1., 1., 1.],
-        [0., 1., 1.],
-    ];
+    /// The unit cube, in VTK order.
+    const CUBE: [[f64; 3]; 8] = HEX_REF;
 
     fn volume6(c: DVec3, t: [u32; 3], xyz: &[f64]) -> f64 {
         let p = |i: u32| {
@@ -134,6 +122,17 @@ mod tests {
         let mut points = CUBE;
         points[1] = [0.3, 0.3, 0.3];
         points.iter().flatten().copied().collect()
+    }
+
+    #[test]
+    fn trilinear_weights_pick_each_corner_at_its_reference_point() {
+        for (i, [r, s, t]) in HEX_REF.into_iter().enumerate() {
+            let w = trilinear_weights(r, s, t);
+            let one_hot: [f64; 8] = std::array::from_fn(|j| f64::from(u8::from(i == j)));
+            assert_eq!(w, one_hot, "corner {i}");
+        }
+        // The centre weighs every corner alike.
+        assert_eq!(trilinear_weights(0.5, 0.5, 0.5), [0.125; 8]);
     }
 
     #[test]
