@@ -54,6 +54,27 @@ impl<'a> Nc<'a> {
         self.file.dimensions().map_or(0, <[_]>::len)
     }
 
+    /// The size of dimension `dim` (0 when it is not defined), at most
+    /// `limit`: the number of the file's own `things` (dimensions,
+    /// variables) each counted item needs one of. A larger size is a
+    /// header's claim, refused before anything is made for it.
+    pub fn count_within(
+        &self,
+        dim: &str,
+        limit: usize,
+        things: &str,
+    ) -> Result<usize, ExodusError> {
+        let count = self.dim(dim).unwrap_or(0);
+        if count > limit {
+            return Err(ExodusError::Invalid {
+                file: self.name.into(),
+                what: format!("dimension \"{dim}\""),
+                message: format!("is {count}, more than the {limit} {things} the file defines"),
+            });
+        }
+        Ok(count)
+    }
+
     /// The size of a dimension the format requires.
     pub fn require_dim(&self, name: &str) -> Result<usize, ExodusError> {
         self.dim(name)

@@ -159,20 +159,8 @@ fn element_blocks(
     num_nodes: usize,
     grid: &mut CellGrid,
 ) -> Result<(Vec<ElementBlock>, Vec<KeptBlock>), ExodusError> {
-    let count = nc.dim("num_el_blk").unwrap_or(0);
-    // Every block defines its own dimensions (its element count at least):
-    // a count beyond them is a header's claim, not blocks to list.
-    let dimensions = nc.dimension_count();
-    if count > dimensions {
-        return Err(ExodusError::Invalid {
-            file: nc.name.into(),
-            what: "dimension \"num_el_blk\"".into(),
-            message: format!(
-                "is {count}, more than the {dimensions} dimensions the file defines (each block \
-                 defines its own)"
-            ),
-        });
-    }
+    // Every block defines its own dimensions (its element count at least).
+    let count = nc.count_within("num_el_blk", nc.dimension_count(), "dimensions")?;
     let ids = match nc.var("eb_prop1") {
         Some(_) => nc.read_ints("eb_prop1", count, "one id per block")?,
         None => (1..=count as i64).collect(),

@@ -42,26 +42,14 @@ pub(super) fn choose_step(
     })
 }
 
-/// The size of the variable-count dimension `dim`, checked against what
-/// the file can hold: each variable is a variable of the file of its own
-/// (`vals_nod_var1`, `vals_elem_var1eb1`...) or a row of the `combined`
-/// one, whose own dimension it then sizes. A larger count is a header's
-/// claim (the names and lists made for it would be that long).
+/// The size of the variable-count dimension `dim`: each variable is a
+/// variable of the file of its own (`vals_nod_var1`, `vals_elem_var1eb1`...)
+/// or a row of the `combined` one, whose own dimension it then sizes.
 fn variable_count(nc: &Nc, dim: &str, combined: Option<&str>) -> Result<usize, ExodusError> {
-    let count = nc.dim(dim).unwrap_or(0);
-    let in_combined = combined.is_some_and(|name| nc.var(name).is_some());
-    let variables = nc.variable_count();
-    if count > variables && !in_combined {
-        return Err(ExodusError::Invalid {
-            file: nc.name.into(),
-            what: format!("dimension \"{dim}\""),
-            message: format!(
-                "is {count}, more than the {variables} variables the file defines (each \
-                 variable is one of them)"
-            ),
-        });
+    if combined.is_some_and(|name| nc.var(name).is_some()) {
+        return Ok(nc.dim(dim).unwrap_or(0));
     }
-    Ok(count)
+    nc.count_within(dim, nc.variable_count(), "variables")
 }
 
 /// Variable names from `name_*_var`, or `<fallback><n>` where a name is
