@@ -28,6 +28,8 @@ import subprocess
 import sys
 import time
 
+from vtk_volume import paraview_unit_distance, volume_window
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 XYZ = os.path.join(ROOT, "data", "plot3d", "bluntfinxyz.bin")
 Q = os.path.join(ROOT, "data", "plot3d", "bluntfinq.bin")
@@ -61,32 +63,11 @@ def vtk_setup(size):
     prop = vtk.vtkVolumeProperty()
     prop.SetColor(color)
     prop.SetScalarOpacity(opacity)
-    b = ugrid.GetBounds()
-    diag = ((b[1] - b[0]) ** 2 + (b[3] - b[2]) ** 2 + (b[5] - b[4]) ** 2) ** 0.5
-    cells = grid.GetNumberOfCells()
-    prop.SetScalarOpacityUnitDistance(diag / cells ** (1.0 / 3.0))
+    prop.SetScalarOpacityUnitDistance(
+        paraview_unit_distance(ugrid.GetBounds(), grid.GetNumberOfCells())
+    )
     prop.SetInterpolationTypeToLinear()
-
-    mapper = vtk.vtkUnstructuredGridVolumeRayCastMapper()
-    mapper.SetInputData(ugrid)
-    mapper.SetAutoAdjustSampleDistances(0)
-    mapper.SetImageSampleDistance(1.0)
-    volume = vtk.vtkVolume()
-    volume.SetMapper(mapper)
-    volume.SetProperty(prop)
-    renderer = vtk.vtkRenderer()
-    renderer.AddVolume(volume)
-    renderer.SetBackground(0, 0, 0)
-    window = vtk.vtkRenderWindow()
-    window.SetSize(size, size)
-    window.AddRenderer(renderer)
-    window.SetMultiSamples(0)
-    renderer.ResetCamera()
-    camera = renderer.GetActiveCamera()
-    camera.Azimuth(30)
-    camera.Elevation(20)
-    camera.OrthogonalizeViewUp()
-    renderer.ResetCameraClippingRange()
+    window, _, mapper, volume = volume_window(ugrid, prop, size, 30, 20)
     integrators = {
         "homogeneous": vtk.vtkUnstructuredGridHomogeneousRayIntegrator(),
         "linear": vtk.vtkUnstructuredGridLinearRayIntegrator(),

@@ -28,6 +28,8 @@ import sys
 
 import numpy as np
 
+from vtk_volume import paraview_unit_distance, volume_window
+
 
 def preset(lo, hi):
     """A ParaView preset over [lo, hi]: blue to red, opacity rising."""
@@ -55,11 +57,10 @@ def point_grid(path, field):
     return grid
 
 
-def vtk_render(path, field, tf, unit, size, azimuth, elevation):
+def vtk_render(grid, tf, unit, size, azimuth, elevation):
     import vtk
     from vtk.util.numpy_support import vtk_to_numpy
 
-    grid = point_grid(path, field)
     tets = vtk.vtkDataSetTriangleFilter()
     tets.SetInputData(grid)
     tets.Update()
@@ -77,28 +78,10 @@ def vtk_render(path, field, tf, unit, size, azimuth, elevation):
     prop.SetScalarOpacityUnitDistance(unit)
     prop.SetInterpolationTypeToLinear()
     prop.ShadeOff()
-    mapper = vtk.vtkUnstructuredGridVolumeRayCastMapper()
-    mapper.SetInputData(tets.GetOutput())
+    window, camera, mapper, _ = volume_window(
+        tets.GetOutput(), prop, size, azimuth, elevation, offscreen=True
+    )
     mapper.SetRayIntegrator(vtk.vtkUnstructuredGridLinearRayIntegrator())
-    mapper.SetImageSampleDistance(1.0)
-    mapper.AutoAdjustSampleDistancesOff()
-    volume = vtk.vtkVolume()
-    volume.SetMapper(mapper)
-    volume.SetProperty(prop)
-    renderer = vtk.vtkRenderer()
-    renderer.AddVolume(volume)
-    renderer.SetBackground(0, 0, 0)
-    window = vtk.vtkRenderWindow()
-    window.SetOffScreenRendering(1)
-    window.SetAlphaBitPlanes(1)
-    window.AddRenderer(renderer)
-    window.SetSize(size, size)
-    camera = renderer.GetActiveCamera()
-    renderer.ResetCamera()
-    camera.Azimuth(azimuth)
-    camera.Elevation(elevation)
-    camera.OrthogonalizeViewUp()
-    renderer.ResetCameraClippingRange()
     window.Render()
     grab = vtk.vtkWindowToImageFilter()
     grab.SetInput(window)
@@ -146,17 +129,13 @@ def main():
 
     grid = point_grid(args.mesh, args.field)
     lo, hi = grid.GetPointData().GetArray(args.field).GetRange()
-    b = grid.GetBounds()
-    diagonal = ((b[1] - b[0]) ** 2 + (b[3] - b[2]) ** 2 + (b[5] - b[4]) ** 2) ** 0.5
-    # ParaView's default unit distance: the diagonal over the cube root of
-    # the cell count.
-    unit = diagonal / grid.GetNumberOfCells() ** (1.0 / 3.0)
+    unit = paraview_unit_distance(grid.GetBounds(), grid.GetNumberOfCells())
     tf = preset(lo, hi)
     tf_path = os.path.join(args.out, "tf.json")
     with open(tf_path, "w") as f:
         json.dump(tf, f)
 
-    reference, view = vtk_render(args.mesh, args.field, tf, unit, args.size, args.azimuth, args.elevation)
+    reference, view = vtk_render(grid, tf, unit, args.size, args.azimuth, args.elevation)
     from PIL import Image
 
     Image.fromarray((reference * 255).round().astype(np.uint8)).save(os.path.join(args.out, "vtk.png"))
