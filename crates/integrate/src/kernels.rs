@@ -253,7 +253,8 @@ impl<W: WeightKernel> SegmentKernel for Grey<'_, W> {
         let scale = |i: usize| if W::TAU { batch[i].length } else { 1.0 };
         let back: [f32; N] = std::array::from_fn(|i| batch[i].back.material.w * scale(i));
         let front: [f32; N] = std::array::from_fn(|i| batch[i].front.material.w * scale(i));
-        let length = batch.map(|s| s.length);
+        // By index: `batch.map` would copy the whole batch first.
+        let length: [f32; N] = std::array::from_fn(|i| batch[i].length);
         let weights = self.kernel.weights_lanes(&back, &front, &length);
         // Every lane's light, live or not, so that the lanes' arithmetic
         // stays in vectors; then the rare lane without material or across

@@ -299,22 +299,21 @@ impl PsiTable {
         // most `n^2 - 1`: the bound below never moves a read, it only lets
         // the reads go unchecked.
         let last_base = self.values.len().saturating_sub(n + 2);
-        let mut base = [0usize; N];
+        // Each lane's four nodes through one slice of the cell's two rows
+        // (one bound check per lane, in a plain loop that inlines).
+        let mut near = [[0.0f32; 2]; N];
+        let mut far = [[0.0f32; 2]; N];
         for k in 0..N {
-            base[k] = (j[k] as usize * n + i[k] as usize).min(last_base);
+            let base = (j[k] as usize * n + i[k] as usize).min(last_base);
+            let rows = &self.values[base..base + n + 2];
+            near[k] = [rows[0], rows[1]];
+            far[k] = [rows[n], rows[n + 1]];
         }
-        let node =
-            |offset: usize| -> [f32; N] { std::array::from_fn(|k| self.values[base[k] + offset]) };
-        let near = [node(0), node(1)];
-        let far = [node(n), node(n + 1)];
-        std::array::from_fn(|k| {
-            bilinear_in_cell(
-                [near[0][k], near[1][k]],
-                [far[0][k], far[1][k]],
-                fx[k],
-                fy[k],
-            )
-        })
+        let mut out = [0.0f32; N];
+        for k in 0..N {
+            out[k] = bilinear_in_cell(near[k], far[k], fx[k], fy[k]);
+        }
+        out
     }
 
     /// Bilinear lookup by `(gamma_b, gamma_f)` in `[0, 1]`.

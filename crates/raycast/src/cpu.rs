@@ -515,7 +515,8 @@ impl<I: SegmentIntegrator + ?Sized> Frame<'_, I> {
             }
             let lights = self.integrator.segments(&batch, live);
             for (i, (walker, index)) in slots.iter_mut().enumerate() {
-                let light = (live >> i & 1 != 0).then_some(lights[i]);
+                let light =
+                    (live >> i & 1 != 0).then(|| (lights[i].emitted, lights[i].transmittance));
                 if walker.end(light, self.limits) || *index == usize::MAX {
                     continue;
                 }

@@ -6,8 +6,8 @@
 use glam::{Vec3, Vec3A};
 use tetray_boundary_bvh::reentry_start;
 use tetray_core::watertight::{Projector, RayFrame};
-use tetray_integrate::SampledSegment;
 use tetray_integrate::fastmath::max_f32;
+use tetray_integrate::{SampledSegment, SegmentLight};
 
 use crate::entries::EntryList;
 use crate::face::{Face, Vertex, local_index};
@@ -47,13 +47,17 @@ pub trait SegmentIntegrator: Sync {
         &self,
         batch: &[SampledSegment<Self::Sample>; N],
         live: u32,
-    ) -> [(Vec3A, Vec3A); N] {
+    ) -> [SegmentLight; N] {
         std::array::from_fn(|i| {
             let s = &batch[i];
             if live >> i & 1 == 0 {
-                (Vec3A::ZERO, Vec3A::ONE)
+                SegmentLight::CLEAR
             } else {
-                self.segment(&s.front, &s.back, s.length)
+                let (emitted, transmittance) = self.segment(&s.front, &s.back, s.length);
+                SegmentLight {
+                    emitted,
+                    transmittance,
+                }
             }
         })
     }
@@ -526,8 +530,7 @@ impl<K: tetray_integrate::SegmentKernel> SegmentIntegrator for tetray_integrate:
         &self,
         batch: &[SampledSegment<Self::Sample>; N],
         live: u32,
-    ) -> [(Vec3A, Vec3A); N] {
+    ) -> [SegmentLight; N] {
         self.integrate_batch(batch, live)
-            .map(|light| (light.emitted, light.transmittance))
     }
 }
