@@ -1,23 +1,33 @@
 #!/usr/bin/python3
-"""Frame times of VTK 9's unstructured-grid ray caster against tetray's CPU
-ray caster on the Blunt Fin, measured alternately in one run, as ratios.
+"""Frame times of VTK's unstructured-grid ray caster against tetray's CPU
+ray caster doing the same work, measured alternately in one run, as ratios
+with the images' difference beside them.
 
-VTK: vtkUnstructuredGridVolumeRayCastMapper on the PLOT3D grid split into
-tetrahedra (vtkDataSetTriangleFilter), with the homogeneous integrator
-(VTK's default, compared with tetray's PPI) and the linear one (compared
-with tetray's exact method); ResetCamera, azimuth 30, elevation 20,
-512 x 512, every pixel cast (image sample distance 1), the median of N
-frames after one warm-up. tetray: `tetray bench --renderer cpu
---integrator ppi|exact --orbit-step 0`, same view and size, its median.
+Meshes: the Blunt Fin (density; VTK reads the PLOT3D files and splits them
+with vtkDataSetTriangleFilter) and a thick torus shell, nonconvex, made by
+`tetray generate solid` ("wave"; VTK reads the same .vtu). For each, one
+ParaView preset file over the field's range is written and read by both
+renderers (tetray: --tf FILE --no-rescale), with ParaView's unit distance
+and opacity per unit distance as VTK applies it (--opacity-mode vtk).
 
-Needs python3-vtk9 and an X display for VTK's render window (xvfb-run):
+VTK: vtkUnstructuredGridVolumeRayCastMapper with the homogeneous
+integrator (VTK's default, beside tetray's PPI) and the linear one (beside
+tetray's exact method); ResetCamera, azimuth 30, elevation 20, every pixel
+cast (image sample distance 1), offscreen, the median of N frames after
+one warm-up. tetray: `tetray bench --renderer cpu --orbit-step 0` with
+VTK's camera, its median.
 
-    apt-get install -y python3-vtk9 xvfb
-    xvfb-run -a /usr/bin/python3 tools/vtk_compare.py \\
+A round times each pair once, VTK first, then every --tetray binary; the
+table gives each round's ratio VTK / tetray and the worst of them. The
+image difference is the mean over every pixel and colour channel of
+|VTK - tetray| (premultiplied colour over black, 0..1), from one more
+frame of each renderer (both written as PNG to the work folder printed).
+
+    target/python-venv/bin/python tools/vtk_compare.py \\
         --tetray target/release/tetray [--tetray OTHER_BUILD ...]
 
-Several --tetray binaries (a baseline and a new build) are run in turn with
-VTK in the same rounds, so their ratios are measured under the same load.
+Needs VTK's Python wheel (pip install vtk, as PyVista brings it), which
+renders offscreen without a display.
 """
 
 import argparse
@@ -26,94 +36,128 @@ import os
 import statistics
 import subprocess
 import sys
+import tempfile
 import time
 
-from vtk_volume import paraview_unit_distance, volume_window
+import numpy as np
+
+from vtk_volume import (
+    paraview_unit_distance,
+    preset,
+    read_back,
+    tetrahedra,
+    view_of,
+    volume_property,
+    volume_window,
+)
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 XYZ = os.path.join(ROOT, "data", "plot3d", "bluntfinxyz.bin")
 Q = os.path.join(ROOT, "data", "plot3d", "bluntfinq.bin")
+PAIRS = [("homogeneous", "ppi"), ("linear", "exact")]
 
 
-def vtk_setup(size):
+def blunt_fin():
+    """The Blunt Fin's density as VTK reads it: (grid, cells as read)."""
     import vtk
 
     reader = vtk.vtkMultiBlockPLOT3DReader()
     reader.SetXYZFileName(XYZ)
     reader.SetQFileName(Q)
     reader.SetScalarFunctionNumber(100)  # density
-    reader.SetVectorFunctionNumber(202)
     reader.Update()
     grid = reader.GetOutput().GetBlock(0)
-    tets = vtk.vtkDataSetTriangleFilter()
-    tets.SetInputData(grid)
-    tets.Update()
-    ugrid = tets.GetOutput()
-    lo, hi = ugrid.GetPointData().GetScalars().GetRange()
-
-    # A cool-to-warm ramp with rising opacity over the range, as tetray's
-    # default transfer function; opacity per ParaView's unit distance.
-    color = vtk.vtkColorTransferFunction()
-    color.SetColorSpaceToDiverging()
-    color.AddRGBPoint(lo, 0.231, 0.298, 0.753)
-    color.AddRGBPoint(hi, 0.706, 0.016, 0.150)
-    opacity = vtk.vtkPiecewiseFunction()
-    opacity.AddPoint(lo, 0.0)
-    opacity.AddPoint(hi, 1.0)
-    prop = vtk.vtkVolumeProperty()
-    prop.SetColor(color)
-    prop.SetScalarOpacity(opacity)
-    prop.SetScalarOpacityUnitDistance(
-        paraview_unit_distance(ugrid.GetBounds(), grid.GetNumberOfCells())
-    )
-    prop.SetInterpolationTypeToLinear()
-    window, _, mapper, volume = volume_window(ugrid, prop, size, 30, 20)
-    integrators = {
-        "homogeneous": vtk.vtkUnstructuredGridHomogeneousRayIntegrator(),
-        "linear": vtk.vtkUnstructuredGridLinearRayIntegrator(),
-    }
-    return window, mapper, volume, integrators, ugrid.GetNumberOfCells()
+    return grid, grid.GetNumberOfCells()
 
 
-def vtk_frames(setup, integrator, frames):
-    window, mapper, volume, integrators, _ = setup
-    mapper.SetRayIntegrator(integrators[integrator])
-    times = []
-    for i in range(frames + 1):
-        volume.Modified()
-        mapper.Modified()
-        start = time.perf_counter()
-        window.Render()
-        elapsed = time.perf_counter() - start
-        if i > 0:
-            times.append(elapsed * 1e3)
-    return statistics.median(times)
+def vtu(path, field):
+    """A .vtu file's grid with `field` as its point scalars."""
+    import vtk
+
+    reader = vtk.vtkXMLUnstructuredGridReader()
+    reader.SetFileName(path)
+    reader.Update()
+    grid = reader.GetOutput()
+    grid.GetPointData().SetActiveScalars(field)
+    return grid, grid.GetNumberOfCells()
 
 
-def tetray_frames(binary, integrator, size, frames, threads):
-    cmd = [
-        binary,
-        "bench",
-        "--renderer",
-        "cpu",
-        "--integrator",
-        integrator,
-        "--orbit-step",
-        "0",
-        "--azimuth",
-        "30",
-        "--elevation",
-        "20",
-        "--size",
-        f"{size}x{size}",
-        "--frames",
-        str(frames),
-    ]
-    if threads:
-        cmd += ["--threads", str(threads)]
-    out = subprocess.run(cmd, check=True, capture_output=True, text=True).stdout
-    report = json.loads(out)
-    return report["ms_per_frame_median"], report["segments_per_s"]
+class Case:
+    """One mesh: VTK's window on it and tetray's flags for the same view,
+    preset and unit distance."""
+
+    def __init__(self, name, grid, cells, tetray_args, size, work):
+        import vtk
+
+        self.name = name
+        self.size = size
+        lo, hi = grid.GetPointData().GetScalars().GetRange()
+        unit = paraview_unit_distance(grid.GetBounds(), cells)
+        tf = preset(lo, hi)
+        tf_path = os.path.join(work, f"{name}-tf.json")
+        with open(tf_path, "w") as f:
+            json.dump(tf, f)
+        ugrid = tetrahedra(grid)
+        self.tets = ugrid.GetNumberOfCells()
+        self.window, camera, self.mapper, self.volume = volume_window(
+            ugrid, volume_property(tf, unit), size, 30, 20, offscreen=True
+        )
+        self.integrators = {
+            "homogeneous": vtk.vtkUnstructuredGridHomogeneousRayIntegrator(),
+            "linear": vtk.vtkUnstructuredGridLinearRayIntegrator(),
+        }
+        self.tetray_args = tetray_args + [
+            "--tf", tf_path, "--no-rescale", "--unit-distance", repr(unit),
+            "--opacity-mode", "vtk", *view_of(camera), "--size", f"{size}x{size}",
+            "--renderer", "cpu",
+        ]
+        self.work = work
+
+    def vtk_frames(self, integrator, frames):
+        """Median ms of `frames` frames after a warm-up."""
+        self.mapper.SetRayIntegrator(self.integrators[integrator])
+        times = []
+        for i in range(frames + 1):
+            self.volume.Modified()
+            self.mapper.Modified()
+            start = time.perf_counter()
+            self.window.Render()
+            if i > 0:
+                times.append((time.perf_counter() - start) * 1e3)
+        return statistics.median(times)
+
+    def vtk_image(self, integrator):
+        self.mapper.SetRayIntegrator(self.integrators[integrator])
+        self.volume.Modified()
+        self.window.Render()
+        return read_back(self.window, self.size)
+
+    def tetray_frames(self, binary, method, frames, threads):
+        """(median ms, segments/s) of `tetray bench`."""
+        cmd = [binary, "bench", *self.tetray_args, "--integrator", method,
+               "--orbit-step", "0", "--frames", str(frames)]
+        if threads:
+            cmd += ["--threads", str(threads)]
+        report = json.loads(run(cmd))
+        return report["ms_per_frame_median"], report["segments_per_s"]
+
+    def tetray_image(self, binary, method):
+        out = os.path.join(self.work, f"{self.name}-{method}.npy")
+        run([binary, "render", *self.tetray_args, "--integrator", method, "-o", out])
+        return np.load(out).astype(np.float64)
+
+
+def save_png(rgb, path):
+    from PIL import Image
+
+    Image.fromarray((np.clip(rgb, 0.0, 1.0) * 255).round().astype(np.uint8)).save(path)
+
+
+def run(cmd):
+    done = subprocess.run(cmd, capture_output=True, text=True)
+    if done.returncode != 0:
+        sys.exit(f"{' '.join(cmd)}: {done.stderr}")
+    return done.stdout
 
 
 def main():
@@ -121,34 +165,58 @@ def main():
     ap.add_argument("--tetray", action="append", help="tetray binary (repeatable)")
     ap.add_argument("--size", type=int, default=512)
     ap.add_argument("--frames", type=int, default=5)
-    ap.add_argument("--rounds", type=int, default=2, help="alternations")
+    ap.add_argument("--rounds", type=int, default=3, help="alternations")
     ap.add_argument("--threads", type=int, default=None, help="tetray --threads")
+    ap.add_argument("--shell-tets", default="200k",
+                    help="tetrahedra of the generated torus shell (tetray generate solid --tets)")
+    ap.add_argument("--mesh", action="append", choices=["bluntfin", "shell"],
+                    help="meshes to measure (default: both)")
     args = ap.parse_args()
     binaries = args.tetray or [os.path.join(ROOT, "target", "release", "tetray")]
+    meshes = args.mesh or ["bluntfin", "shell"]
+    work = tempfile.mkdtemp(prefix="vtk-compare-")
 
-    setup = vtk_setup(args.size)
-    print(f"VTK: {setup[4]} tetrahedra, {args.size}x{args.size}, median of "
-          f"{args.frames} frames, {args.rounds} rounds", file=sys.stderr)
-    pairs = [("homogeneous", "ppi"), ("linear", "exact")]
-    results = {}
+    cases = []
+    for name in meshes:
+        if name == "bluntfin":
+            grid, cells = blunt_fin()
+            cases.append(Case(name, grid, cells, [XYZ, "--scalar", "density"], args.size, work))
+        else:
+            path = os.path.join(work, "shell.vtu")
+            run([binaries[0], "generate", "solid", "--tets", args.shell_tets, "-o", path])
+            grid, cells = vtu(path, "wave")
+            cases.append(Case(name, grid, cells, [path, "--scalar", "wave"], args.size, work))
+
+    times = {}
     for r in range(args.rounds):
-        for vtk_int, ours in pairs:
-            v = vtk_frames(setup, vtk_int, args.frames)
-            results.setdefault(("vtk", vtk_int), []).append(v)
-            print(f"round {r}: vtk {vtk_int}: {v:.1f} ms", file=sys.stderr)
-            for b in binaries:
-                ms, seg = tetray_frames(b, ours, args.size, args.frames, args.threads)
-                results.setdefault((b, ours), []).append(ms)
-                print(f"round {r}: {b} {ours}: {ms:.1f} ms ({seg / 1e6:.1f} M segments/s)",
-                      file=sys.stderr)
+        for case in cases:
+            for vtk_int, ours in PAIRS:
+                v = case.vtk_frames(vtk_int, args.frames)
+                print(f"round {r}: {case.name} vtk {vtk_int}: {v:.1f} ms", file=sys.stderr)
+                for b in binaries:
+                    ms, seg = case.tetray_frames(b, ours, args.frames, args.threads)
+                    times.setdefault((case.name, vtk_int, b), []).append((v, ms))
+                    print(f"round {r}: {case.name} {b} {ours}: {ms:.1f} ms "
+                          f"({seg / 1e6:.1f} M segments/s)", file=sys.stderr)
 
-    print("| VTK integrator | VTK ms | tetray | method | tetray ms | VTK / tetray |")
-    print("|---|---:|---|---|---:|---:|")
-    for vtk_int, ours in pairs:
-        v = statistics.median(results[("vtk", vtk_int)])
-        for b in binaries:
-            t = statistics.median(results[(b, ours)])
-            print(f"| {vtk_int} | {v:.1f} | {b} | {ours} | {t:.1f} | {v / t:.2f} |")
+    print(f"{args.size} x {args.size}, median of {args.frames} frames, {args.rounds} rounds; "
+          f"images in {work}")
+    print("| mesh | VTK tets | VTK integrator | tetray | method | VTK / tetray per round "
+          "| worst | mean abs RGB difference |")
+    print("| --- | ---: | --- | --- | --- | --- | ---: | ---: |")
+    for case in cases:
+        for vtk_int, ours in PAIRS:
+            reference = case.vtk_image(vtk_int)[..., :3]
+            for b in binaries:
+                image = np.clip(case.tetray_image(b, ours)[..., :3], 0.0, 1.0)
+                diff = float(np.abs(image - reference).mean())
+                save_png(reference, os.path.join(work, f"{case.name}-vtk-{vtk_int}.png"))
+                save_png(image, os.path.join(work, f"{case.name}-tetray-{ours}.png"))
+                ratios = [v / t for v, t in times[(case.name, vtk_int, b)]]
+                rounds = ", ".join(f"{v:.0f}/{t:.0f} ms = {v / t:.2f}x"
+                                   for v, t in times[(case.name, vtk_int, b)])
+                print(f"| {case.name} | {case.tets} | {vtk_int} | {b} | {ours} | {rounds} "
+                      f"| {min(ratios):.2f}x | {diff:.4f} |")
 
 
 if __name__ == "__main__":

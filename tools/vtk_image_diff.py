@@ -28,15 +28,15 @@ import sys
 
 import numpy as np
 
-from vtk_volume import paraview_unit_distance, volume_window
-
-
-def preset(lo, hi):
-    """A ParaView preset over [lo, hi]: blue to red, opacity rising."""
-    at = lambda t: lo + (hi - lo) * t
-    rgb = [at(0.0), 0.23, 0.30, 0.75, at(0.5), 0.87, 0.87, 0.87, at(1.0), 0.71, 0.02, 0.15]
-    points = [at(0.0), 0.05, 0.5, 0.0, at(0.6), 0.3, 0.5, 0.0, at(1.0), 0.9, 0.5, 0.0]
-    return [{"Name": "eqps-study", "ColorSpace": "RGB", "RGBPoints": rgb, "Points": points}]
+from vtk_volume import (
+    paraview_unit_distance,
+    preset,
+    read_back,
+    tetrahedra,
+    view_of,
+    volume_property,
+    volume_window,
+)
 
 
 def point_grid(path, field):
@@ -59,54 +59,21 @@ def point_grid(path, field):
 
 def vtk_render(grid, tf, unit, size, azimuth, elevation):
     import vtk
-    from vtk.util.numpy_support import vtk_to_numpy
 
-    tets = vtk.vtkDataSetTriangleFilter()
-    tets.SetInputData(grid)
-    tets.Update()
-    color = vtk.vtkColorTransferFunction()
-    p = tf[0]["RGBPoints"]
-    for i in range(0, len(p), 4):
-        color.AddRGBPoint(p[i], p[i + 1], p[i + 2], p[i + 3])
-    opacity = vtk.vtkPiecewiseFunction()
-    p = tf[0]["Points"]
-    for i in range(0, len(p), 4):
-        opacity.AddPoint(p[i], p[i + 1])
-    prop = vtk.vtkVolumeProperty()
-    prop.SetColor(color)
-    prop.SetScalarOpacity(opacity)
-    prop.SetScalarOpacityUnitDistance(unit)
-    prop.SetInterpolationTypeToLinear()
-    prop.ShadeOff()
+    prop = volume_property(tf, unit)
     window, camera, mapper, _ = volume_window(
-        tets.GetOutput(), prop, size, azimuth, elevation, offscreen=True
+        tetrahedra(grid), prop, size, azimuth, elevation, offscreen=True
     )
     mapper.SetRayIntegrator(vtk.vtkUnstructuredGridLinearRayIntegrator())
     window.Render()
-    grab = vtk.vtkWindowToImageFilter()
-    grab.SetInput(window)
-    grab.SetInputBufferTypeToRGBA()
-    grab.ReadFrontBufferOff()
-    grab.Update()
-    pixels = vtk_to_numpy(grab.GetOutput().GetPointData().GetScalars())
-    image = pixels.reshape(size, size, 4)[::-1].astype(np.float64) / 255.0
-    view = {
-        "position": camera.GetPosition(),
-        "focal": camera.GetFocalPoint(),
-        "up": camera.GetViewUp(),
-        "angle": camera.GetViewAngle(),
-    }
-    return image, view
+    return read_back(window, size), view_of(camera)
 
 
 def tetray_render(binary, path, field, tf_path, unit, size, view, out):
-    xyz = lambda v: ",".join(repr(float(x)) for x in v)
     args = [
         binary, "render", path, "--scalar", field, "--renderer", "cpu",
         "--integrator", "exact", "--tf", tf_path, "--no-rescale",
-        "--unit-distance", repr(unit), "--opacity-mode", "vtk",
-        "--camera-position", xyz(view["position"]), "--focal-point", xyz(view["focal"]),
-        "--view-up", xyz(view["up"]), "--view-angle", repr(view["angle"]),
+        "--unit-distance", repr(unit), "--opacity-mode", "vtk", *view,
         "--size", f"{size}x{size}", "-o", out,
     ]
     run = subprocess.run(args, capture_output=True, text=True)
@@ -130,7 +97,7 @@ def main():
     grid = point_grid(args.mesh, args.field)
     lo, hi = grid.GetPointData().GetArray(args.field).GetRange()
     unit = paraview_unit_distance(grid.GetBounds(), grid.GetNumberOfCells())
-    tf = preset(lo, hi)
+    tf = preset(lo, hi, "eqps-study")
     tf_path = os.path.join(args.out, "tf.json")
     with open(tf_path, "w") as f:
         json.dump(tf, f)
