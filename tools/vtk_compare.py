@@ -199,7 +199,10 @@ def main():
                     print(f"round {r}: {case.name} {b} {ours}: {ms:.1f} ms "
                           f"({seg / 1e6:.1f} M segments/s)", file=sys.stderr)
 
-    print(f"{args.size} x {args.size}, median of {args.frames} frames, {args.rounds} rounds; "
+    import vtk
+
+    print(f"VTK {vtk.vtkVersion.GetVTKVersion()}, "
+          f"{args.size} x {args.size}, median of {args.frames} frames, {args.rounds} rounds; "
           f"images in {work}")
     print("| mesh | VTK tets | VTK integrator | tetray | method | VTK / tetray per round "
           "| worst | mean abs RGB difference |")
