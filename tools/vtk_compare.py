@@ -43,8 +43,10 @@ import numpy as np
 
 from vtk_volume import (
     paraview_unit_distance,
+    point_grid,
     preset,
     read_back,
+    save_png,
     tetrahedra,
     view_of,
     volume_property,
@@ -67,18 +69,6 @@ def blunt_fin():
     reader.SetScalarFunctionNumber(100)  # density
     reader.Update()
     grid = reader.GetOutput().GetBlock(0)
-    return grid, grid.GetNumberOfCells()
-
-
-def vtu(path, field):
-    """A .vtu file's grid with `field` as its point scalars."""
-    import vtk
-
-    reader = vtk.vtkXMLUnstructuredGridReader()
-    reader.SetFileName(path)
-    reader.Update()
-    grid = reader.GetOutput()
-    grid.GetPointData().SetActiveScalars(field)
     return grid, grid.GetNumberOfCells()
 
 
@@ -147,12 +137,6 @@ class Case:
         return np.load(out).astype(np.float64)
 
 
-def save_png(rgb, path):
-    from PIL import Image
-
-    Image.fromarray((np.clip(rgb, 0.0, 1.0) * 255).round().astype(np.uint8)).save(path)
-
-
 def run(cmd):
     done = subprocess.run(cmd, capture_output=True, text=True)
     if done.returncode != 0:
@@ -184,7 +168,8 @@ def main():
         else:
             path = os.path.join(work, "shell.vtu")
             run([binaries[0], "generate", "solid", "--tets", args.shell_tets, "-o", path])
-            grid, cells = vtu(path, "wave")
+            grid = point_grid(path, "wave")
+            cells = grid.GetNumberOfCells()
             cases.append(Case(name, grid, cells, [path, "--scalar", "wave"], args.size, work))
 
     times = {}

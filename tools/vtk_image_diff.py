@@ -30,31 +30,15 @@ import numpy as np
 
 from vtk_volume import (
     paraview_unit_distance,
+    point_grid,
     preset,
     read_back,
+    save_png,
     tetrahedra,
     view_of,
     volume_property,
     volume_window,
 )
-
-
-def point_grid(path, field):
-    """The grid with `field` as its active point scalars (a cell field
-    averaged to the points over the cells using each, as tetray does)."""
-    import vtk
-
-    reader = vtk.vtkXMLUnstructuredGridReader()
-    reader.SetFileName(path)
-    reader.Update()
-    grid = reader.GetOutput()
-    if grid.GetPointData().GetArray(field) is None:
-        to_points = vtk.vtkCellDataToPointData()
-        to_points.SetInputData(grid)
-        to_points.Update()
-        grid = to_points.GetOutput()
-    grid.GetPointData().SetActiveScalars(field)
-    return grid
 
 
 def vtk_render(grid, tf, unit, size, azimuth, elevation):
@@ -103,9 +87,7 @@ def main():
         json.dump(tf, f)
 
     reference, view = vtk_render(grid, tf, unit, args.size, args.azimuth, args.elevation)
-    from PIL import Image
-
-    Image.fromarray((reference * 255).round().astype(np.uint8)).save(os.path.join(args.out, "vtk.png"))
+    save_png(reference, os.path.join(args.out, "vtk.png"))
     print(f"{args.mesh} {args.field} range [{lo:.4g}, {hi:.4g}], unit distance {unit:.4g}, "
           f"{args.size} x {args.size}, azimuth {args.azimuth}, elevation {args.elevation}")
     print("| tetray | lit pixels | share > 2/255 | p99 | max |")
@@ -115,7 +97,7 @@ def main():
                               os.path.join(args.out, f"tetray{k}.npy"))
         # Premultiplied colour over black is what VTK's window shows.
         rgb = np.clip(image[..., :3], 0.0, 1.0)
-        Image.fromarray((rgb * 255).round().astype(np.uint8)).save(os.path.join(args.out, f"tetray{k}.png"))
+        save_png(rgb, os.path.join(args.out, f"tetray{k}.png"))
         lit = (reference[..., 3] > 2 / 255) | (image[..., 3] > 2 / 255)
         diff = np.abs(rgb - reference[..., :3]).max(axis=2)[lit]
         share = float((diff > 2 / 255).mean())

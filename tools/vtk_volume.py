@@ -12,6 +12,24 @@ def paraview_unit_distance(bounds, cells):
     return diagonal / cells ** (1.0 / 3.0)
 
 
+def point_grid(path, field):
+    """The grid with `field` as its active point scalars (a cell field
+    averaged to the points over the cells using each, as tetray does)."""
+    import vtk
+
+    reader = vtk.vtkXMLUnstructuredGridReader()
+    reader.SetFileName(path)
+    reader.Update()
+    grid = reader.GetOutput()
+    if grid.GetPointData().GetArray(field) is None:
+        to_points = vtk.vtkCellDataToPointData()
+        to_points.SetInputData(grid)
+        to_points.Update()
+        grid = to_points.GetOutput()
+    grid.GetPointData().SetActiveScalars(field)
+    return grid
+
+
 def preset(lo, hi, name="tetray-vtk-study"):
     """A ParaView preset over [lo, hi]: blue to red, opacity rising."""
     at = lambda t: lo + (hi - lo) * t
@@ -98,6 +116,14 @@ def read_back(window, size):
     grab.Update()
     pixels = vtk_to_numpy(grab.GetOutput().GetPointData().GetScalars())
     return pixels.reshape(size, size, 4)[::-1].astype(np.float64) / 255.0
+
+
+def save_png(image, path):
+    """`image` (floats, 0..1, RGB or RGBA) as an 8-bit PNG."""
+    import numpy as np
+    from PIL import Image
+
+    Image.fromarray((np.clip(image, 0.0, 1.0) * 255).round().astype(np.uint8)).save(path)
 
 
 def view_of(camera):

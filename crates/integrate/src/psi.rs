@@ -296,11 +296,10 @@ impl PsiTable {
         let n = self.size;
         // The four nodes of each lane's cell. Cells are at most
         // `last_cell = n - 2` on both axes, so the last node read is at
-        // most `n^2 - 1`: the bound below never moves a read, it only lets
-        // the reads go unchecked.
+        // most `n^2 - 1`: the bound below never moves a read. Each lane's
+        // nodes come through one slice of the cell's two rows (one bound
+        // check per lane, in a plain loop that inlines).
         let last_base = self.values.len().saturating_sub(n + 2);
-        // Each lane's four nodes through one slice of the cell's two rows
-        // (one bound check per lane, in a plain loop that inlines).
         let mut near = [[0.0f32; 2]; N];
         let mut far = [[0.0f32; 2]; N];
         for k in 0..N {
