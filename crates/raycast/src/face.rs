@@ -12,6 +12,7 @@ use glam::Vec4;
 use tetray_core::watertight::{Projector, RayPoint, crossing_barycentric, edge_sign};
 use tetray_integrate::fastmath::{clamp_f32, max_f32, min_f32};
 use tetray_mesh::FACE_VERTICES;
+use tetray_wide::lanes;
 
 /// One vertex in the frame of a ray: its position across the ray (`x`,
 /// `y`, in f64 so that edge functions are exact), its distance along the
@@ -162,15 +163,15 @@ impl Face {
         // signs are combined without branches (a branch per sign costs
         // about one misprediction per step); an exact zero, rare, takes
         // the symbolic perturbation's side.
-        let any_zero = (e[0] == 0.0) | (e[1] == 0.0) | (e[2] == 0.0);
-        let code = if any_zero {
+        // Slot 3 is masked off.
+        let code = if lanes::zero_mask(e) & 7 != 0 {
             let mut code = 0;
             for (i, &edge) in e[..3].iter().enumerate() {
                 code |= usize::from(d.positive(&self.vertex(i), edge)) << i;
             }
             code
         } else {
-            usize::from(e[0] > 0.0) | usize::from(e[1] > 0.0) << 1 | usize::from(e[2] > 0.0) << 2
+            (lanes::positive_mask(e) & 7) as usize
         };
         let k = EXCLUDED[code];
         if k == NONE {
@@ -217,9 +218,9 @@ impl Face {
 /// The local index in `verts` of point `id` (one of them).
 #[inline(always)]
 pub(crate) fn local_index(verts: [u32; 4], id: u32) -> usize {
-    usize::from(verts[1] == id)
-        | (usize::from(verts[2] == id) << 1)
-        | (usize::from(verts[3] == id) * 3)
+    // A tetrahedron's four points differ; an `id` not among them (which
+    // the callers never pass) gives 3.
+    (lanes::equal_mask(verts, id) | 8).trailing_zeros() as usize & 3
 }
 
 #[cfg(test)]

@@ -8,6 +8,8 @@
 //! register copies). Rust never fuses a multiplication and an addition
 //! into an FMA on its own, so the results are the same bits.
 
+pub mod lanes;
+
 /// Whether [`run`] takes the x86-64-v3 copy: on a CPU with the features,
 /// unless the environment variable `TETRAY_CPU_BASELINE` is set (to time
 /// the two builds against each other).
