@@ -14,16 +14,9 @@ use std::arch::x86_64::{
 #[inline(always)]
 pub fn positive_mask(v: [f64; 4]) -> u32 {
     #[cfg(target_arch = "x86_64")]
-    {
-        let [lo, hi] = halves(v);
-        // SAFETY: SSE2 is part of every x86-64 CPU (the target's baseline);
-        // these intrinsics read and write registers only.
-        unsafe {
-            let zero = _mm_setzero_pd();
-            (_mm_movemask_pd(_mm_cmpgt_pd(lo, zero)) | _mm_movemask_pd(_mm_cmpgt_pd(hi, zero)) << 2)
-                as u32
-        }
-    }
+    // SAFETY: SSE2 is part of every x86-64 CPU (the target's baseline);
+    // the compare reads and writes registers only.
+    return against_zero(v, |lanes, zero| unsafe { _mm_cmpgt_pd(lanes, zero) });
     #[cfg(not(target_arch = "x86_64"))]
     scalar_mask(v, |x| x > 0.0)
 }
@@ -32,15 +25,8 @@ pub fn positive_mask(v: [f64; 4]) -> u32 {
 #[inline(always)]
 pub fn zero_mask(v: [f64; 4]) -> u32 {
     #[cfg(target_arch = "x86_64")]
-    {
-        let [lo, hi] = halves(v);
-        // SAFETY: as in `positive_mask`.
-        unsafe {
-            let zero = _mm_setzero_pd();
-            (_mm_movemask_pd(_mm_cmpeq_pd(lo, zero)) | _mm_movemask_pd(_mm_cmpeq_pd(hi, zero)) << 2)
-                as u32
-        }
-    }
+    // SAFETY: as in `positive_mask`.
+    return against_zero(v, |lanes, zero| unsafe { _mm_cmpeq_pd(lanes, zero) });
     #[cfg(not(target_arch = "x86_64"))]
     scalar_mask(v, |x| x == 0.0)
 }
@@ -61,11 +47,17 @@ pub fn equal_mask(v: [u32; 4], x: u32) -> u32 {
     (0..4).fold(0, |mask, i| mask | u32::from(v[i] == x) << i)
 }
 
+/// The mask of `compare(lanes, 0)` over the four lanes of `v`, two at a
+/// time (`compare`: an SSE2 compare, all ones in a lane where it holds).
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
-fn halves(v: [f64; 4]) -> [__m128d; 2] {
+fn against_zero(v: [f64; 4], compare: impl Fn(__m128d, __m128d) -> __m128d) -> u32 {
     // SAFETY: as in `positive_mask`.
-    unsafe { [_mm_set_pd(v[1], v[0]), _mm_set_pd(v[3], v[2])] }
+    unsafe {
+        let zero = _mm_setzero_pd();
+        let (lo, hi) = (_mm_set_pd(v[1], v[0]), _mm_set_pd(v[3], v[2]));
+        (_mm_movemask_pd(compare(lo, zero)) | _mm_movemask_pd(compare(hi, zero)) << 2) as u32
+    }
 }
 
 #[cfg(not(target_arch = "x86_64"))]
