@@ -26,15 +26,27 @@ use crate::segment::{SampledSegment, SegmentLight, Weights, light_from_weights};
 pub trait WeightKernel: Sync {
     fn weights(&self, back: f32, front: f32, length: f32) -> Weights;
     /// [`WeightKernel::weights`] of `N` segments at once, the same bits per
-    /// lane (a kernel may compute its lanes as vector arithmetic).
+    /// lane where bit `i` of `live` is set, anything elsewhere (a kernel may
+    /// compute every lane as vector arithmetic; this one skips the lanes
+    /// that are not live).
     #[inline(always)]
     fn weights_lanes<const N: usize>(
         &self,
         back: &[f32; N],
         front: &[f32; N],
         length: &[f32; N],
+        live: u32,
     ) -> [Weights; N] {
-        std::array::from_fn(|i| self.weights(back[i], front[i], length[i]))
+        std::array::from_fn(|i| {
+            if live >> i & 1 == 0 {
+                Weights {
+                    zeta: 1.0,
+                    psi: 1.0,
+                }
+            } else {
+                self.weights(back[i], front[i], length[i])
+            }
+        })
     }
     /// Whether the quantity is the attenuation (multiplied by the length
     /// before `weights`) or the opacity.
@@ -82,6 +94,7 @@ impl WeightKernel for Ppi<'_> {
         back: &[f32; N],
         front: &[f32; N],
         _length: &[f32; N],
+        _live: u32,
     ) -> [Weights; N] {
         ppi_weights_lanes(self.table, back, front)
     }
@@ -156,24 +169,26 @@ pub trait SegmentKernel: Sync {
         back: &Self::Sample,
         length: f32,
     ) -> SegmentLight;
-    /// The light of `N` segments, one per ray in flight: lane `i` as
-    /// [`Typed::integrate_samples`] would give it where bit `i` of `live` is
-    /// set, anything elsewhere. A kernel may integrate its lanes together.
+    /// The light of `N` segments, one per ray in flight, written into
+    /// `lights`: lane `i` as [`Typed::integrate_samples`] would give it
+    /// where bit `i` of `live` is set, anything elsewhere. A kernel may
+    /// integrate its lanes together. (Written in place: an array of lights
+    /// returned by value is copied whole on the way out.)
     #[inline(always)]
     fn segments<const N: usize>(
         &self,
         knots: &TfKnots,
         batch: &[SampledSegment<Self::Sample>; N],
         live: u32,
-    ) -> [SegmentLight; N] {
-        std::array::from_fn(|i| {
-            let s = &batch[i];
-            if live >> i & 1 == 0 || !carries_material(s.length) {
+        lights: &mut [SegmentLight; N],
+    ) {
+        for (i, (light, s)) in lights.iter_mut().zip(batch).enumerate() {
+            *light = if live >> i & 1 == 0 || !carries_material(s.length) {
                 SegmentLight::CLEAR
             } else {
                 self.segment(knots, &s.front, &s.back, s.length)
-            }
-        })
+            };
+        }
     }
 }
 
@@ -249,18 +264,20 @@ impl<W: WeightKernel> SegmentKernel for Grey<'_, W> {
         knots: &TfKnots,
         batch: &[SampledSegment<GreySample>; N],
         live: u32,
-    ) -> [SegmentLight; N] {
+        lights: &mut [SegmentLight; N],
+    ) {
         let scale = |i: usize| if W::TAU { batch[i].length } else { 1.0 };
         let back: [f32; N] = std::array::from_fn(|i| batch[i].back.material.w * scale(i));
         let front: [f32; N] = std::array::from_fn(|i| batch[i].front.material.w * scale(i));
         // By index: `batch.map` would copy the whole batch first.
         let length: [f32; N] = std::array::from_fn(|i| batch[i].length);
-        let weights = self.kernel.weights_lanes(&back, &front, &length);
+        let weights = self.kernel.weights_lanes(&back, &front, &length, live);
         // Every lane's light, live or not, so that the lanes' arithmetic
         // stays in vectors; then the rare lane without material or across
         // a knot is redone alone.
-        let mut lights: [SegmentLight; N] =
-            std::array::from_fn(|i| weights[i].light(batch[i].back.lum(), batch[i].front.lum()));
+        for (i, light) in lights.iter_mut().enumerate() {
+            *light = weights[i].light(batch[i].back.lum(), batch[i].front.lum());
+        }
         for (i, (light, s)) in lights.iter_mut().zip(batch).enumerate() {
             let one_piece = self.one_piece(&s.front, &s.back);
             if live >> i & 1 != 0 && !(one_piece && carries_material(s.length)) {
@@ -271,7 +288,6 @@ impl<W: WeightKernel> SegmentKernel for Grey<'_, W> {
                 };
             }
         }
-        lights
     }
 }
 
@@ -481,8 +497,9 @@ impl<K: SegmentKernel> Typed<'_, K> {
         &self,
         batch: &[SampledSegment<K::Sample>; N],
         live: u32,
-    ) -> [SegmentLight; N] {
-        self.kernel.segments(self.knots, batch, live)
+        lights: &mut [SegmentLight; N],
+    ) {
+        self.kernel.segments(self.knots, batch, live, lights)
     }
 }
 

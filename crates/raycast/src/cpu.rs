@@ -6,7 +6,9 @@ use std::time::{Duration, Instant};
 use glam::Vec3;
 use rayon::prelude::*;
 use tetray_core::watertight::RayFrame;
-use tetray_integrate::{KernelVisitor, SampledSegment, ScalarIntegrator, SegmentKernel, Typed};
+use tetray_integrate::{
+    KernelVisitor, SampledSegment, ScalarIntegrator, SegmentKernel, SegmentLight, Typed,
+};
 
 use tetray_core::WalkCounters;
 use tetray_core::camera::{Camera, CameraError, PixelRays};
@@ -504,6 +506,7 @@ impl<I: SegmentIntegrator + ?Sized> Frame<'_, I> {
         // the segments at once, then compositing. `live` has a bit per ray.
         const { assert!(N <= 32) };
         let mut batch = [SampledSegment::default(); N];
+        let mut lights = [SegmentLight::CLEAR; N];
         while active > 0 {
             for (walker, _) in &mut slots {
                 walker.begin::<PREFETCH, _>(self.scene, self.integrator, self.limits);
@@ -513,7 +516,7 @@ impl<I: SegmentIntegrator + ?Sized> Frame<'_, I> {
                 let integrate = walker.classify(self.integrator, &mut batch[i]);
                 live |= u32::from(integrate) << i;
             }
-            let lights = self.integrator.segments(&batch, live);
+            self.integrator.segments(&batch, live, &mut lights);
             for (i, (walker, index)) in slots.iter_mut().enumerate() {
                 let light =
                     (live >> i & 1 != 0).then(|| (lights[i].emitted, lights[i].transmittance));

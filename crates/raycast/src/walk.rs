@@ -40,17 +40,18 @@ pub trait SegmentIntegrator: Sync {
     fn segment(&self, front: &Self::Sample, back: &Self::Sample, length: f32) -> (Vec3A, Vec3A);
 
     /// [`SegmentIntegrator::segment`] of the segments of several rays in
-    /// flight: lane `i` where bit `i` of `live` is set, anything elsewhere.
-    /// An integrator may integrate its lanes together, to the same bits.
+    /// flight, written into `lights`: lane `i` where bit `i` of `live` is
+    /// set, anything elsewhere. An integrator may integrate its lanes
+    /// together, to the same bits.
     #[inline(always)]
     fn segments<const N: usize>(
         &self,
         batch: &[SampledSegment<Self::Sample>; N],
         live: u32,
-    ) -> [SegmentLight; N] {
-        std::array::from_fn(|i| {
-            let s = &batch[i];
-            if live >> i & 1 == 0 {
+        lights: &mut [SegmentLight; N],
+    ) {
+        for (i, (light, s)) in lights.iter_mut().zip(batch).enumerate() {
+            *light = if live >> i & 1 == 0 {
                 SegmentLight::CLEAR
             } else {
                 let (emitted, transmittance) = self.segment(&s.front, &s.back, s.length);
@@ -58,8 +59,8 @@ pub trait SegmentIntegrator: Sync {
                     emitted,
                     transmittance,
                 }
-            }
-        })
+            };
+        }
     }
 }
 
@@ -530,7 +531,8 @@ impl<K: tetray_integrate::SegmentKernel> SegmentIntegrator for tetray_integrate:
         &self,
         batch: &[SampledSegment<Self::Sample>; N],
         live: u32,
-    ) -> [SegmentLight; N] {
-        self.integrate_batch(batch, live)
+        lights: &mut [SegmentLight; N],
+    ) {
+        self.integrate_batch(batch, live, lights)
     }
 }
