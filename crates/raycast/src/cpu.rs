@@ -502,21 +502,18 @@ impl<I: SegmentIntegrator + ?Sized> Frame<'_, I> {
             }
         }
         // Each round takes every ray one step, stage by stage: exits (or
-        // BVH entries) with their classified segments, then the
-        // integration of all the segments at once, then compositing.
-        // `live` has a bit per ray.
+        // BVH entries), then classification, then the integration of all
+        // the segments at once, then compositing. `live` has a bit per ray.
         const { assert!(N <= 32) };
         let mut batch = [SampledSegment::default(); N];
         let mut lights = [SegmentLight::CLEAR; N];
         while active > 0 {
+            for (walker, _) in &mut slots {
+                walker.begin::<PREFETCH, _>(self.scene, self.integrator, self.limits);
+            }
             let mut live = 0;
             for (i, (walker, _)) in slots.iter_mut().enumerate() {
-                let integrate = walker.begin::<PREFETCH, _>(
-                    self.scene,
-                    self.integrator,
-                    self.limits,
-                    &mut batch[i],
-                );
+                let integrate = walker.classify(self.integrator, &mut batch[i]);
                 live |= u32::from(integrate) << i;
             }
             self.integrator.segments(&batch, live, &mut lights);

@@ -118,8 +118,8 @@ enum Phase {
     Entering,
     /// Inside the mesh, in `Walker::tet`.
     Walking,
-    /// Half-way through a step: the exit is found and the segment
-    /// classified; the segment is integrated, and its light composited
+    /// Half-way through a step: the exit is found; the segment is
+    /// classified and integrated, and its light composited
     /// ([`Walker::end`]) before the ray moves to `Walker::crossing`.
     Crossing,
     Done,
@@ -148,6 +148,9 @@ pub(crate) struct Walker<S> {
     entries: Option<EntryList>,
     tet: usize,
     f_in: usize,
+    /// Distance and scalar at the exit of the step in progress.
+    t_exit: f32,
+    s_out: f32,
     /// The record's entry across the exit face of the step in progress.
     crossing: u32,
     face: Face,
@@ -182,6 +185,8 @@ impl<S: Copy + Default> Walker<S> {
             entries: None,
             tet: 0,
             f_in: 0,
+            t_exit: 0.0,
+            s_out: 0.0,
             crossing: FINAL_EXIT,
             face: Face::EMPTY,
             t_in: 0.0,
@@ -253,22 +258,21 @@ impl<S: Copy + Default> Walker<S> {
         integrator: &I,
         limits: WalkLimits,
     ) -> bool {
+        self.begin::<PREFETCH, I>(scene, integrator, limits);
         let mut segment = SampledSegment::default();
         let light = self
-            .begin::<PREFETCH, I>(scene, integrator, limits, &mut segment)
+            .classify(integrator, &mut segment)
             .then(|| integrator.segment(&segment.front, &segment.back, segment.length));
         self.end(light, limits)
     }
 
     /// The first stage of [`Walker::advance`]: one BVH query, or where the
-    /// ray leaves its tetrahedron and the step's segment, classified,
-    /// written to `segment` if it has positive length in front of the eye
-    /// (returns whether it has). Then the segment is integrated and
-    /// [`Walker::end`] composites its light. A thread with many rays in
-    /// flight takes each stage for all of them in turn and integrates their
-    /// segments together: the stages of different rays are independent,
-    /// and the processor overlaps them, where one ray's step is a single
-    /// chain of dependent operations.
+    /// ray leaves its tetrahedron. Then [`Walker::classify`] finds the
+    /// step's segment and [`Walker::end`] composites its light. A thread
+    /// with many rays in flight takes each stage for all of them in turn
+    /// and integrates their segments together: the stages of different
+    /// rays are independent, and the processor overlaps them, where one
+    /// ray's step is a single chain of dependent operations.
     ///
     /// With `PREFETCH`, each step first prefetches the records of the three
     /// cells the ray may enter next, so that a mesh too large for the
@@ -280,23 +284,16 @@ impl<S: Copy + Default> Walker<S> {
         scene: &Scene,
         integrator: &I,
         limits: WalkLimits,
-        segment: &mut SampledSegment<S>,
-    ) -> bool {
+    ) {
         match self.phase {
-            Phase::Walking => match self.exit::<PREFETCH>(scene, limits) {
-                Some((t_exit, s_out)) => self.classify(integrator, t_exit, s_out, segment),
-                None => false,
-            },
-            Phase::Entering => {
-                self.enter(scene, integrator, limits);
-                false
-            }
-            Phase::Crossing | Phase::Done => false,
+            Phase::Walking => self.exit::<PREFETCH>(scene, limits),
+            Phase::Entering => self.enter(scene, integrator, limits),
+            Phase::Crossing | Phase::Done => {}
         }
     }
 
     /// The last stage of [`Walker::advance`]: composites the light of the
-    /// step's segment (`None` when [`Walker::begin`] found none), stops
+    /// step's segment (`None` when [`Walker::classify`] found none), stops
     /// the ray once it is opaque enough, and moves it across the exit face.
     /// Returns whether the ray goes on.
     #[inline(always)]
@@ -382,14 +379,9 @@ impl<S: Copy + Default> Walker<S> {
         self.phase = Phase::Walking;
     }
 
-    /// Finds where the ray leaves the current cell (its distance and
-    /// scalar) and the cell it enters; `None` where the walk stops.
+    /// Finds where the ray leaves the current cell and the cell it enters.
     #[inline(always)]
-    fn exit<const PREFETCH: bool>(
-        &mut self,
-        scene: &Scene,
-        limits: WalkLimits,
-    ) -> Option<(f32, f32)> {
+    fn exit<const PREFETCH: bool>(&mut self, scene: &Scene, limits: WalkLimits) {
         let record = &scene.walk_records()[self.tet];
         if PREFETCH {
             // The next tetrahedron is one of the neighbours across the three
@@ -409,7 +401,7 @@ impl<S: Copy + Default> Walker<S> {
         if counters.steps > limits.max_steps {
             counters.step_bound_hit = true;
             self.phase = Phase::Done;
-            return None;
+            return;
         }
         // Of this cell only the vertex opposite the entry face is new.
         let apex = Vertex::load(
@@ -421,26 +413,30 @@ impl<S: Copy + Default> Walker<S> {
             // Only a degenerate (flat) tetrahedron has no exit face.
             counters.walk_failure = true;
             self.phase = Phase::Done;
-            return None;
+            return;
         };
+        self.t_exit = t_exit;
+        self.s_out = s_out;
         // The exit face is the one opposite the entry face's vertex it
         // leaves out.
         self.crossing = record.next[local_index(record.verts, left_out)];
         self.phase = Phase::Crossing;
-        Some((t_exit, s_out))
     }
 
-    /// Classifies the scalar `s_out` at the exit (at `t_exit`) that
-    /// [`Walker::exit`] found and writes the step's segment, if it has
-    /// positive length in front of the eye; returns whether it has.
+    /// The second stage of [`Walker::advance`]: classifies the scalar at
+    /// the exit found by [`Walker::begin`] and writes the step's segment,
+    /// if it has positive length in front of the eye; returns whether it
+    /// has.
     #[inline(always)]
-    fn classify<I: SegmentIntegrator<Sample = S> + ?Sized>(
+    pub fn classify<I: SegmentIntegrator<Sample = S> + ?Sized>(
         &mut self,
         integrator: &I,
-        t_exit: f32,
-        s_out: f32,
         segment: &mut SampledSegment<S>,
     ) -> bool {
+        if self.phase != Phase::Crossing {
+            return false;
+        }
+        let (t_exit, s_out) = (self.t_exit, self.s_out);
         let (t_in, s_in) = (self.t_in, self.s_in);
         let sample_in = self.sample_in;
         let t_out = max_f32(t_exit, t_in);
