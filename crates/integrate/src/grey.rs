@@ -93,11 +93,13 @@ impl GreyKnots {
         Some(GreyKnots { scalars, intervals })
     }
 
-    /// Material at `s` by the linear function of interval `k`.
+    /// Material at `s` by the linear function of interval `k`, which is
+    /// one of a sample's (from -1 to `n - 1`, the `n + 1` entries of
+    /// `intervals`; a default sample's 0 too, as there is at least one
+    /// knot): the index needs no clamp.
     #[inline(always)]
     fn in_interval(&self, k: isize, s: f32) -> Vec4 {
-        let index = (k + 1).clamp(0, self.intervals.len() as isize - 1) as usize;
-        let iv = &self.intervals[index];
+        let iv = &self.intervals[(k + 1) as usize];
         let t = clamp_f32((s - iv.x0) * iv.inv_width, 0.0, 1.0);
         iv.start + iv.delta * t
     }
