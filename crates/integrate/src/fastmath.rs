@@ -95,18 +95,14 @@ pub fn max_f32(a: f32, b: f32) -> f32 {
     if b > a { b } else { a }
 }
 
-/// `x` clamped into `[lo, hi]` (`lo <= hi`) by plain comparisons: a NaN
-/// `x` stays NaN, as with `f32::clamp`, which would also panic on a bad
-/// range.
+/// `x` clamped into `[lo, hi]` (`lo <= hi`, or either bound NaN, which
+/// then bounds nothing) by plain comparisons: a NaN `x` stays NaN, as with
+/// `f32::clamp`, which would also panic on a bad range. Written as a
+/// `max_f32` and a `min_f32`, each one SSE instruction (whose NaN rule
+/// keeps `x`), where a chain of two tests compiles to branches.
 #[inline(always)]
 pub fn clamp_f32(x: f32, lo: f32, hi: f32) -> f32 {
-    if x < lo {
-        lo
-    } else if x > hi {
-        hi
-    } else {
-        x
-    }
+    min_f32(max_f32(x, lo), hi)
 }
 
 #[cfg(test)]
@@ -174,5 +170,47 @@ mod tests {
             }
         }
         assert!(clamp_f32(f32::NAN, 0.0, 1.0).is_nan());
+    }
+
+    /// The clamp gives the bits of the two tests in turn (`lo` below it,
+    /// `hi` above it, else `x`), signed zeros and NaN included, wherever
+    /// `lo <= hi` or a bound is NaN.
+    #[test]
+    fn clamp_has_the_bits_of_two_tests() {
+        let values = [
+            f32::NEG_INFINITY,
+            -3.5,
+            -0.0,
+            0.0,
+            1e-30,
+            0.25,
+            1.0,
+            7.0,
+            f32::INFINITY,
+            f32::NAN,
+        ];
+        let tests = |x: f32, lo: f32, hi: f32| {
+            if x < lo {
+                lo
+            } else if x > hi {
+                hi
+            } else {
+                x
+            }
+        };
+        for &lo in &values {
+            for &hi in &values {
+                if lo > hi {
+                    continue;
+                }
+                for &x in &values {
+                    let (got, want) = (clamp_f32(x, lo, hi), tests(x, lo, hi));
+                    assert!(
+                        got.to_bits() == want.to_bits() || got.is_nan() && want.is_nan(),
+                        "clamp {x} {lo} {hi}: {got} against {want}"
+                    );
+                }
+            }
+        }
     }
 }
