@@ -10,7 +10,7 @@
 
 use glam::{Vec3A, Vec4};
 
-use crate::average::{average_opacity_weights, average_weights};
+use crate::average::{average_opacity_weights, average_weights, average_weights_lanes};
 use crate::exact::exact_weights;
 use crate::grey::{GreyKnots, GreySample};
 use crate::knots::{KnotSample, Material, TfKnots};
@@ -28,7 +28,8 @@ pub trait WeightKernel: Sync {
     /// [`WeightKernel::weights`] of `N` segments at once, the same bits per
     /// lane where bit `i` of `live` is set, anything elsewhere (a kernel may
     /// compute every lane as vector arithmetic; this one skips the lanes
-    /// that are not live).
+    /// that are not live, which pays where a lane's weights cost more than
+    /// the branch).
     #[inline(always)]
     fn weights_lanes<const N: usize>(
         &self,
@@ -113,6 +114,17 @@ impl WeightKernel for Average {
     #[inline(always)]
     fn weights(&self, a: f32, b: f32, _length: f32) -> Weights {
         average_weights(a, b)
+    }
+    /// Every lane, as vector arithmetic (cheaper than skipping any).
+    #[inline(always)]
+    fn weights_lanes<const N: usize>(
+        &self,
+        back: &[f32; N],
+        front: &[f32; N],
+        _length: &[f32; N],
+        _live: u32,
+    ) -> [Weights; N] {
+        average_weights_lanes(back, front)
     }
 }
 
