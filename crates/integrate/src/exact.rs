@@ -69,18 +69,61 @@ fn psi_series(b: f64, c: f64, zeta: f64) -> f64 {
 const M8_CHAINS: [[f64; 7]; 4] = m8_chains();
 
 const fn m8_chains() -> [[f64; 7]; 4] {
+    let terms: [f64; 28] = moment_terms(8);
     let mut chains = [[0.0; 7]; 4];
-    let mut factorial = 1.0;
     let mut j = 0;
     while j < 28 {
+        chains[j % 4][j / 4] = terms[j];
+        j += 1;
+    }
+    chains
+}
+
+/// The first `J` terms `(-1)^j / (j! (j + k + 1))` of the series
+/// `M_k(b) = sum_j t_j b^j`.
+const fn moment_terms<const J: usize>(k: usize) -> [f64; J] {
+    let mut terms = [0.0; J];
+    let mut factorial = 1.0;
+    let mut j = 0;
+    while j < J {
         if j > 0 {
             factorial *= j as f64;
         }
         let sign = if j % 2 == 0 { 1.0 } else { -1.0 };
-        chains[j % 4][j / 4] = sign / (factorial * (j + 9) as f64);
+        terms[j] = sign / (factorial * (j + k + 1) as f64);
         j += 1;
     }
-    chains
+    terms
+}
+
+/// `M_0, M_2, ..., M_2(N-1)` from the last of them, `top`, by the backward
+/// recurrence `M_{k-1} = (b M_k + exp(-b)) / k` two steps at a time:
+/// `M_{k-2} = (b^2 M_k + exp(-b) (b + k)) / (k (k - 1))`, which multiplies
+/// errors by `b / k` per step (`e` is `exp(-b)`).
+#[inline(always)]
+fn moments_down<const N: usize>(top: f64, b: f64, e: f64) -> [f64; N] {
+    let b2 = b * b;
+    let mut m = [top; N];
+    for n in (1..N).rev() {
+        let k = (2 * n) as f64;
+        m[n - 1] = (b2 * m[n] + e * (b + k)) * (1.0 / (k * (k - 1.0)));
+    }
+    m
+}
+
+/// `M_0, M_2, ..., M_2(N-1)` by the forward recurrence
+/// `M_k = (k M_{k-1} - exp(-b)) / b` two steps at a time:
+/// `M_k = (k (k - 1) M_{k-2} - exp(-b) (b + k)) / b^2` from
+/// `M_0 = (1 - exp(-b)) / b`, which multiplies errors by `k / b` per step.
+#[inline(always)]
+fn moments_up<const N: usize>(b: f64, e: f64) -> [f64; N] {
+    let inv_b2 = 1.0 / (b * b);
+    let mut m = [(1.0 - e) / b; N];
+    for n in 1..N {
+        let k = (2 * n) as f64;
+        m[n] = (k * (k - 1.0) * m[n - 1] - e * (b + k)) * inv_b2;
+    }
+    m
 }
 
 /// `M_k(b) = int_0^1 x^k exp(-b x) dx` for `k = 0, 2, 4, 6, 8`, given
@@ -88,32 +131,19 @@ const fn m8_chains() -> [[f64; 7]; 4] {
 /// with `exp(c)` to its `c^5` term (`c^6 / 720 < 2e-21`).
 fn even_moments(b: f64, c: f64, zeta: f64) -> [f64; 5] {
     let e = zeta * (1.0 + c * (1.0 + c * (0.5 + c * (1.0 / 6.0 + c * (1.0 / 24.0 + c / 120.0)))));
-    let b2 = b * b;
     if b <= 2.0 {
-        // M_8 by its series, then two steps at a time of the backward
-        // recurrence M_{k-1} = (b M_k + exp(-b)) / k:
-        // M_{k-2} = (b^2 M_k + exp(-b) (b + k)) / (k (k - 1)). It multiplies
-        // errors by b / k <= 2 / k per step: by at most 2^8 / 8! overall.
+        // M_8 by its series, then the backward recurrence: errors shrink
+        // by at most 2^8 / 8! overall.
+        let b2 = b * b;
         let b4 = b2 * b2;
         let q = M8_CHAINS.map(|chain| chain.iter().rev().fold(0.0, |sum, &t| sum * b4 + t));
         let m8 = (q[0] + b * q[1]) + b2 * (q[2] + b * q[3]);
-        let m6 = (b2 * m8 + e * (b + 8.0)) * (1.0 / 56.0);
-        let m4 = (b2 * m6 + e * (b + 6.0)) * (1.0 / 30.0);
-        let m2 = (b2 * m4 + e * (b + 4.0)) * (1.0 / 12.0);
-        let m0 = (b2 * m2 + e * (b + 2.0)) * 0.5;
-        [m0, m2, m4, m6, m8]
+        moments_down(m8, b, e)
     } else {
-        // Forward recurrence M_k = (k M_{k-1} - exp(-b)) / b: it multiplies
-        // errors by k / b per step, at most 8!/2^8 overall, and every M_k
-        // with k > 0 is damped by a power of c < 1e-3 in the sum. Two
-        // steps at a time: M_k = (k (k - 1) M_{k-2} - exp(-b) (b + k)) / b^2.
-        let inv_b2 = 1.0 / b2;
-        let m0 = (1.0 - e) / b;
-        let m2 = (2.0 * m0 - e * (b + 2.0)) * inv_b2;
-        let m4 = (12.0 * m2 - e * (b + 4.0)) * inv_b2;
-        let m6 = (30.0 * m4 - e * (b + 6.0)) * inv_b2;
-        let m8 = (56.0 * m6 - e * (b + 8.0)) * inv_b2;
-        [m0, m2, m4, m6, m8]
+        // The forward recurrence grows errors by at most 8!/2^8 overall,
+        // and every M_k with k > 0 is damped by a power of c < 1e-3 in the
+        // sum.
+        moments_up(b, e)
     }
 }
 
@@ -143,22 +173,7 @@ pub fn exact_weights(tau_d_back: f32, tau_d_front: f32) -> Weights {
 /// At `b = 1/2` the first omitted term is below `2^-11 / 11! / 18 < 7e-13`,
 /// about `1e-11` of `M_6`; `M_4`, `M_2` and `M_0`, which come from `M_6`,
 /// take it times `b^2 / 30`, `b^4 / 360` and `b^6 / 720`.
-const M6_TERMS: [f64; 11] = m6_terms();
-
-const fn m6_terms() -> [f64; 11] {
-    let mut terms = [0.0; 11];
-    let mut factorial = 1.0;
-    let mut j = 0;
-    while j < 11 {
-        if j > 0 {
-            factorial *= j as f64;
-        }
-        let sign = if j % 2 == 0 { 1.0 } else { -1.0 };
-        terms[j] = sign / (factorial * (j + 7) as f64);
-        j += 1;
-    }
-    terms
-}
+const M6_TERMS: [f64; 11] = moment_terms(6);
 
 /// Psi for `|c| < 1e-3` to about `1e-14` relative, where [`psi_series`]
 /// goes to `1e-18`: `sum_{n=0}^{3} (-c)^n / n! M_2n(b)`, whose first
@@ -168,25 +183,16 @@ const fn m6_terms() -> [f64; 11] {
 fn psi_near_constant(b: f64, c: f64, zeta: f64) -> f64 {
     // exp(-b) = zeta exp(c), exp(c) to its c^4 term (c^5 / 120 < 1e-17).
     let e = zeta * (1.0 + c * (1.0 + c * (0.5 + c * (1.0 / 6.0 + c * (1.0 / 24.0)))));
-    let b2 = b * b;
     let [m0, m2, m4, m6] = if b <= 0.5 {
-        // M_6 by its series, then the backward recurrence (see
-        // `even_moments`), which damps errors.
+        // M_6 by its series, then the backward recurrence, which damps
+        // errors.
         let m6 = M6_TERMS.iter().rev().fold(0.0, |sum, &t| sum * b + t);
-        let m4 = (b2 * m6 + e * (b + 6.0)) * (1.0 / 30.0);
-        let m2 = (b2 * m4 + e * (b + 4.0)) * (1.0 / 12.0);
-        let m0 = (b2 * m2 + e * (b + 2.0)) * 0.5;
-        [m0, m2, m4, m6]
+        moments_down(m6, b, e)
     } else {
         // The forward recurrence multiplies rounding by at most k! / b^k
         // in M_k (8 in M_2, 46080 in M_6 at b = 1/2), and Psi takes M_k
         // times |c|^(k/2) / (k/2)! (1.7e-10 for M_6).
-        let inv_b2 = 1.0 / b2;
-        let m0 = (1.0 - e) / b;
-        let m2 = (2.0 * m0 - e * (b + 2.0)) * inv_b2;
-        let m4 = (12.0 * m2 - e * (b + 4.0)) * inv_b2;
-        let m6 = (30.0 * m4 - e * (b + 6.0)) * inv_b2;
-        [m0, m2, m4, m6]
+        moments_up(b, e)
     };
     m0 - c * (m2 - c * (0.5 * m4 - c * (1.0 / 6.0) * m6))
 }
