@@ -80,6 +80,8 @@ struct Entry {
     found: bool,
     face: u32,
     t: f32,
+    // The face's point indices, in the order tested (all edges negative).
+    ids: vec3<u32>,
 }
 
 struct Skip {
@@ -99,7 +101,7 @@ fn skipped(skip: Skip, face: u32) -> bool {
 // The nearest boundary face the ray enters through with t in
 // [t_min, t_max], ignoring `skip`; ties in t go to the lowest face index.
 fn first_entry(ray: Ray, t_min: f32, t_max: f32, skip: Skip) -> Entry {
-    var best = Entry(false, 0u, t_max);
+    var best = Entry(false, 0u, t_max, vec3<u32>(0u));
     let slab = make_slab(ray);
     let root = load_node(0u);
     if (!slab_entry(slab, root.min, root.max, t_min, t_max).hit) {
@@ -132,7 +134,7 @@ fn first_entry(ray: Ray, t_min: f32, t_max: f32, skip: Skip) -> Entry {
                     let t = crossing(a, b, c).t;
                     let better = !best.found || t < best.t || (t == best.t && prim.w < best.face);
                     if (t >= t_min && t <= t_max && better && !skipped(skip, prim.w)) {
-                        best = Entry(true, prim.w, t);
+                        best = Entry(true, prim.w, t, prim.xyz);
                     }
                 }
             }

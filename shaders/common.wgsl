@@ -67,10 +67,12 @@ const FINAL_EXIT: u32 = 0xfffffffeu;
 // Per point: position and active scalar.
 @group(0) @binding(2) var<storage, read> points0: array<vec4<f32>>;
 @group(0) @binding(3) var<storage, read> points1: array<vec4<f32>>;
-// Per tetrahedron two entries: vertex indices, then across each local face
-// (neighbour << 2 | its local face), NO_NEIGHBOR or FINAL_EXIT.
-@group(0) @binding(4) var<storage, read> tets0: array<vec4<u32>>;
-@group(0) @binding(5) var<storage, read> tets1: array<vec4<u32>>;
+// Per tetrahedron TET_WORDS words (tetray_scene::WalkTet): the XOR of its
+// point indices, then across the face opposite the vertex of each rank
+// (the place of its point index among the four, ascending) the neighbour,
+// NO_NEIGHBOR or FINAL_EXIT.
+@group(0) @binding(4) var<storage, read> tets0: array<u32>;
+@group(0) @binding(5) var<storage, read> tets1: array<u32>;
 // BVH nodes (two entries each: min.xyz + index, max.xyz + count, floats as
 // bits), then primitives (three point indices + boundary face), then per
 // boundary face its tetrahedron << 2 | local face, four to an entry, then
@@ -91,18 +93,24 @@ fn point_at(i: u32) -> vec4<f32> {
     return points1[i - params.point_chunk];
 }
 
-fn tet_verts(t: u32) -> vec4<u32> {
+const TET_WORDS: u32 = 5u;
+
+// Word `w` of tetrahedron `t`'s record.
+fn tet_word(t: u32, w: u32) -> u32 {
     if (t < params.tet_chunk) {
-        return tets0[2u * t];
+        return tets0[TET_WORDS * t + w];
     }
-    return tets1[2u * (t - params.tet_chunk)];
+    return tets1[TET_WORDS * (t - params.tet_chunk) + w];
 }
 
-fn tet_next(t: u32) -> vec4<u32> {
-    if (t < params.tet_chunk) {
-        return tets0[2u * t + 1u];
-    }
-    return tets1[2u * (t - params.tet_chunk) + 1u];
+// The XOR of tetrahedron `t`'s point indices.
+fn tet_xor(t: u32) -> u32 {
+    return tet_word(t, 0u);
+}
+
+// Across the face of tetrahedron `t` opposite its vertex of rank `rank`.
+fn tet_next(t: u32, rank: u32) -> u32 {
+    return tet_word(t, 1u + rank);
 }
 
 // Adds `value` to a 64-bit counter kept as two words.

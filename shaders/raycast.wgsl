@@ -4,47 +4,39 @@
 // front to back and re-enters through the BVH after leaving the mesh (CPU
 // twin: tetray_gpu::twin::raycast; reference: tetray_raycast).
 
-// Local face f is opposite vertex f, counter-clockwise seen from outside
-// (tetray_mesh::FACE_VERTICES).
-const FACE_VERTS = array<vec3<u32>, 4>(
-    vec3<u32>(1u, 2u, 3u), vec3<u32>(0u, 3u, 2u), vec3<u32>(0u, 1u, 3u), vec3<u32>(0u, 2u, 1u),
-);
-// For the apex (the vertex opposite the entry face), its other vertices.
-const APEX_OTHERS = array<vec3<u32>, 4>(
-    vec3<u32>(1u, 2u, 3u), vec3<u32>(0u, 2u, 3u), vec3<u32>(0u, 1u, 3u), vec3<u32>(0u, 1u, 2u),
-);
-// Exit face of apex a for the signs of its three edges (bit i: the edge to
-// APEX_OTHERS[a][i] is positive), at [8 a + code]: face | next << 4 |
-// prev << 8 (the vertices after and before the apex in the face), or
-// 0xffff where all signs agree (only a flat tetrahedron). The exit face is
-// the one whose edge apex -> next is positive and apex -> prev negative
-// (tetray_raycast::packed_exit_table derives the table).
-const APEX_EXITS = array<u32, 32>(
-    0xffffu, 0x0312u, 0x0123u, 0x0312u, 0x0231u, 0x0231u, 0x0123u, 0xffffu,
-    0xffffu, 0x0203u, 0x0320u, 0x0320u, 0x0032u, 0x0203u, 0x0032u, 0xffffu,
-    0xffffu, 0x0301u, 0x0013u, 0x0301u, 0x0130u, 0x0130u, 0x0013u, 0xffffu,
-    0xffffu, 0x0102u, 0x0210u, 0x0210u, 0x0021u, 0x0102u, 0x0021u, 0xffffu,
-);
+// For the signs of the edges apex -> face slot i (bit i set when positive),
+// the slot of the entry face that the exit face leaves out, or 3 where all
+// signs agree (only a flat tetrahedron): the exit face (apex, slot k + 1,
+// slot k + 2) has all its edges positive exactly when apex -> slot k + 1
+// is positive and apex -> slot k + 2 negative, its third edge being the
+// entry face's (tetray_raycast::LEFT_OUT_SLOT).
+const LEFT_OUT_SLOT = array<u32, 8>(3u, 2u, 0u, 0u, 1u, 2u, 1u, 3u);
 // "Unbounded" distances (WGSL has no infinity literal).
 const FAR: f32 = 3.4e38;
 // 2^-20 (tetray_boundary_bvh::REENTRY_REL).
 const REENTRY_REL: f32 = 9.5367431640625e-7;
 
-// The current tetrahedron in the frame of the ray: per vertex its
-// projection (x, y across the ray, z along it) and its scalar in w, and the
-// vertex ids. Four named registers, picked by `vertex` with selects:
-// dynamically indexed local arrays would live in (slow) local memory on
-// many GPUs.
-struct Cell {
+// The face a ray entered its current tetrahedron through, in the frame of
+// the ray: per vertex its projection (x, y across the ray, z along it) and
+// its scalar in w, in the cyclic order in which every edge is positive,
+// and the vertices' point indices. The next cell shares the exit face, so
+// of each cell only the vertex opposite the entry face is loaded: one
+// point read per step. Three named registers, picked by `slot` with
+// selects: dynamically indexed local arrays would live in (slow) local
+// memory on many GPUs.
+struct Face {
     v0: vec4<f32>,
     v1: vec4<f32>,
     v2: vec4<f32>,
-    v3: vec4<f32>,
-    ids: vec4<u32>,
+    ids: vec3<u32>,
 }
 
-fn vertex(cell: Cell, i: u32) -> vec4<f32> {
-    return select(select(select(cell.v0, cell.v1, i == 1u), cell.v2, i == 2u), cell.v3, i == 3u);
+fn slot(face: Face, i: u32) -> vec4<f32> {
+    return select(select(face.v0, face.v1, i == 1u), face.v2, i == 2u);
+}
+
+fn slot_id(face: Face, i: u32) -> u32 {
+    return select(select(face.ids.x, face.ids.y, i == 1u), face.ids.z, i == 2u);
 }
 
 fn load_vertex(ray: Ray, index: u32) -> vec4<f32> {
@@ -52,89 +44,85 @@ fn load_vertex(ray: Ray, index: u32) -> vec4<f32> {
     return vec4<f32>(project(ray, q.xyz), q.w);
 }
 
-// A cell entered from the BVH: all four vertices loaded and projected.
-fn load_cell(ray: Ray, tet: u32) -> Cell {
-    let v = tet_verts(tet);
-    return Cell(load_vertex(ray, v.x), load_vertex(ray, v.y), load_vertex(ray, v.z), load_vertex(ray, v.w), v);
+struct Entered {
+    face: Face,
+    // The scalar where the ray crosses the face.
+    s: f32,
 }
 
-// The vertex of `cell` with id `id` (v0 when none has it).
-fn carried(cell: Cell, id: u32) -> vec4<f32> {
-    return select(select(select(cell.v0, cell.v1, id == cell.ids.y), cell.v2, id == cell.ids.z), cell.v3, id == cell.ids.w);
-}
-
-// The neighbour `tet`, entered through its face `f_in` from `cell`: the
-// three vertices of that face are the previous cell's exit face, carried
-// over with the same bits (so both sides of the face agree exactly); only
-// the apex opposite it is loaded and projected. One point read per step
-// instead of four.
-fn next_cell(ray: Ray, cell: Cell, tet: u32, f_in: u32) -> Cell {
-    let v = tet_verts(tet);
-    let apex = load_vertex(ray, v[f_in]);
-    return Cell(
-        select(carried(cell, v.x), apex, f_in == 0u),
-        select(carried(cell, v.y), apex, f_in == 1u),
-        select(carried(cell, v.z), apex, f_in == 2u),
-        select(carried(cell, v.w), apex, f_in == 3u),
-        v,
-    );
-}
-
-// Scalar where the ray crosses face f.
-fn face_scalar(cell: Cell, f: u32) -> f32 {
-    let v = FACE_VERTS[f];
-    let a = vertex(cell, v.x);
-    let b = vertex(cell, v.y);
-    let c = vertex(cell, v.z);
+// Enters through the boundary face with point indices `ids`, all of whose
+// edges are negative (the face tested by the BVH): reversed, they are
+// positive.
+fn enter_face(ray: Ray, ids: vec3<u32>) -> Entered {
+    let a = load_vertex(ray, ids.x);
+    let b = load_vertex(ray, ids.y);
+    let c = load_vertex(ray, ids.z);
     let x = crossing(a.xyz, b.xyz, c.xyz);
-    return dot(x.weights, vec3<f32>(a.w, b.w, c.w));
+    let s = dot(x.weights, vec3<f32>(a.w, b.w, c.w));
+    return Entered(Face(a, c, b, vec3<u32>(ids.x, ids.z, ids.y)), s);
+}
+
+// The point index of the vertex opposite `face` in tetrahedron `tet`.
+fn apex_of(face: Face, tet: u32) -> u32 {
+    return tet_xor(tet) ^ face.ids.x ^ face.ids.y ^ face.ids.z;
+}
+
+// The rank of point index `id` among those of the tetrahedron made of
+// `face` and `id`: the slot of the neighbour across the face opposite it.
+fn rank_of(face: Face, id: u32) -> u32 {
+    let below = select(vec3<u32>(0u), vec3<u32>(1u), face.ids < vec3<u32>(id));
+    return below.x + below.y + below.z;
 }
 
 struct Exit {
     ok: bool,
-    face: u32,
+    // The point index of the entry face's vertex not on the exit face.
+    left_out: u32,
     t: f32,
     s: f32,
 }
 
-// Leaves a cell entered through f_in: the exit face, the distance to it and
-// the scalar there.
-fn exit_cell(cell: Cell, f_in: u32) -> Exit {
-    let others = APEX_OTHERS[f_in];
-    let pa = vertex(cell, f_in);
-    let p0 = vertex(cell, others.x);
-    let p1 = vertex(cell, others.y);
-    let p2 = vertex(cell, others.z);
-    // Edge functions apex -> each other vertex, and their exact signs.
-    let e = vec3<f32>(edge_value(pa.xyz, p0.xyz), edge_value(pa.xyz, p1.xyz), edge_value(pa.xyz, p2.xyz));
+// Leaves the cell whose vertex opposite `face` is `pa` (point index
+// `apex`): the distance to the exit face and the scalar there; the exit
+// face becomes `face`, the next cell's entry face.
+fn exit_face(face: ptr<function, Face>, apex: u32, pa: vec4<f32>) -> Exit {
+    let f = *face;
+    // Edge functions apex -> each slot, and their exact signs.
+    let e = vec3<f32>(edge_value(pa.xyz, f.v0.xyz), edge_value(pa.xyz, f.v1.xyz), edge_value(pa.xyz, f.v2.xyz));
     var code = 0u;
-    if (edge_sign_of(pa.xyz, p0.xyz, e.x) > 0) {
+    if (edge_sign_of(pa.xyz, f.v0.xyz, e.x) > 0) {
         code |= 1u;
     }
-    if (edge_sign_of(pa.xyz, p1.xyz, e.y) > 0) {
+    if (edge_sign_of(pa.xyz, f.v1.xyz, e.y) > 0) {
         code |= 2u;
     }
-    if (edge_sign_of(pa.xyz, p2.xyz, e.z) > 0) {
+    if (edge_sign_of(pa.xyz, f.v2.xyz, e.z) > 0) {
         code |= 4u;
     }
-    let packed = APEX_EXITS[8u * f_in + code];
-    if (packed == 0xffffu) {
+    let k = LEFT_OUT_SLOT[code];
+    if (k == 3u) {
         return Exit(false, 0u, 0.0, 0.0);
     }
-    let f = packed & 0xfu;
-    let next = (packed >> 4u) & 0xfu;
-    let prev = (packed >> 8u) & 0xfu;
-    let pn = vertex(cell, next);
-    let pp = vertex(cell, prev);
-    // The apex edge functions of next and prev (which of the three).
-    let e_next = select(select(e.x, e.y, next == others.y), e.z, next == others.z);
-    let e_prev = select(select(e.x, e.y, prev == others.y), e.z, prev == others.z);
+    // The exit face in cyclic order: the apex, then the slots following
+    // and preceding k.
+    let next = (k + 1u) % 3u;
+    let prev = (k + 2u) % 3u;
+    let pn = slot(f, next);
+    let pp = slot(f, prev);
+    let e_next = select(select(e.x, e.y, next == 1u), e.z, next == 2u);
+    let e_prev = select(select(e.x, e.y, prev == 1u), e.z, prev == 2u);
     // Weights of (apex, next, prev): the edge functions of the opposite
     // edges, ef(prev, apex) = -ef(apex, prev).
     let w = vec3<f32>(edge_value(pn.xyz, pp.xyz), -e_prev, e_next);
     let x = crossing_from(w, vec3<f32>(pa.z, pn.z, pp.z));
     let s = dot(x.weights, vec3<f32>(pa.w, pn.w, pp.w));
-    return Exit(true, f, x.t, s);
+    let left_out = slot_id(f, k);
+    // The apex takes slot k: (apex, next, prev) in the same cyclic order.
+    (*face).v0 = select(f.v0, pa, k == 0u);
+    (*face).v1 = select(f.v1, pa, k == 1u);
+    (*face).v2 = select(f.v2, pa, k == 2u);
+    (*face).ids = select(f.ids, vec3<u32>(apex), vec3<u32>(k) == vec3<u32>(0u, 1u, 2u));
+    return Exit(true, left_out, x.t, s);
 }
 
 var<workgroup> group_stats: array<atomic<u32>, STAT_COUNT>;
@@ -213,12 +201,11 @@ fn cast_ray(px: u32, py: u32) -> Pixel {
             skip.faces[skip.len] = entry.face;
             skip.len++;
         }
-        let code = face_entry(entry.face);
-        var tet = code >> 2u;
-        var f_in = code & 3u;
-        var cell = load_cell(ray, tet);
+        var tet = face_entry(entry.face) >> 2u;
+        let entered = enter_face(ray, entry.ids);
+        var face = entered.face;
         var t_in = max(entry.t, t_cursor);
-        var s_in = face_scalar(cell, f_in);
+        var s_in = entered.s;
         var sample_in = sample_at(s_in);
         loop {
             counters.steps++;
@@ -227,7 +214,8 @@ fn cast_ray(px: u32, py: u32) -> Pixel {
                 done = true;
                 break;
             }
-            let ex = exit_cell(cell, f_in);
+            let apex = apex_of(face, tet);
+            let ex = exit_face(&face, apex, load_vertex(ray, apex));
             if (!ex.ok) {
                 // Only a flat tetrahedron has no exit face.
                 counters.failure = 1u;
@@ -258,7 +246,7 @@ fn cast_ray(px: u32, py: u32) -> Pixel {
             t_in = t_out;
             s_in = ex.s;
             sample_in = sample_out;
-            let next = tet_next(tet)[ex.face];
+            let next = tet_next(tet, rank_of(face, ex.left_out));
             if (next >= FINAL_EXIT) {
                 // Left through the convex hull: nothing more to meet but
                 // the gap of a left-out cell beyond; otherwise ask the BVH
@@ -267,9 +255,7 @@ fn cast_ray(px: u32, py: u32) -> Pixel {
                 t_cursor = t_out;
                 break;
             }
-            tet = next >> 2u;
-            f_in = next & 3u;
-            cell = next_cell(ray, cell, tet, f_in);
+            tet = next;
         }
     }
     let alpha = 1.0 - (trans.x + trans.y + trans.z) / 3.0;

@@ -34,4 +34,6 @@ pub use render::{
     frame_params, walk_counters,
 };
 pub use target::GpuTarget;
-pub use upload::{GpuIntegrator, GpuScene, IntegratorData, PreintParams, SceneData, psi_texture};
+pub use upload::{
+    GpuIntegrator, GpuScene, IntegratorData, PreintParams, SceneData, TET_WORDS, psi_texture,
+};

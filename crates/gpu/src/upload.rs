@@ -18,15 +18,19 @@ use crate::{GpuContext, GpuError};
 /// Storage bindings an array may be split over.
 const MAX_CHUNKS: u64 = 2;
 
+/// Words per tetrahedron in the kernel's array of them (20 bytes).
+pub const TET_WORDS: usize = 5;
+
 /// What the kernel reads of a mesh, as host arrays (uploaded by
 /// [`GpuScene::new`]; read directly by the CPU twin).
 #[derive(Debug, Clone)]
 pub struct SceneData {
     /// Per point: position and active scalar.
     pub points: Vec<[f32; 4]>,
-    /// Per tetrahedron two entries: vertex indices, then across each local
-    /// face `neighbour << 2 | its local face` or a boundary marker.
-    pub tets: Vec<[u32; 4]>,
+    /// Per tetrahedron [`TET_WORDS`] words, its [`tetray_scene::WalkTet`]:
+    /// the XOR of its point indices, then its neighbours by the rank of the
+    /// vertex opposite each (or a boundary marker).
+    pub tets: Vec<u32>,
     /// BVH nodes (two entries each), primitives, the face table, then the
     /// left-out cells (`tetray_scene::overlaps`): the bounds of their
     /// points (minimum, maximum: two entries of f32 bits) and one entry of
@@ -44,10 +48,10 @@ impl SceneData {
     pub fn new(scene: &Scene) -> Result<SceneData, GpuError> {
         let flat = scene.bvh.flatten()?;
         let walk = scene.walk_records();
-        let mut tets: Vec<[u32; 4]> = Vec::with_capacity(2 * walk.len());
+        let mut tets: Vec<u32> = Vec::with_capacity(TET_WORDS * walk.len());
         for record in walk {
-            tets.push(record.verts);
-            tets.push(record.next);
+            tets.push(record.vert_xor);
+            tets.extend(record.next);
         }
         let mut bvh: Vec<[u32; 4]> = Vec::new();
         for node in flat.nodes() {
@@ -94,7 +98,7 @@ impl SceneData {
     }
 
     pub fn tet_count(&self) -> usize {
-        self.tets.len() / 2
+        self.tets.len() / TET_WORDS
     }
 }
 
@@ -146,7 +150,7 @@ impl GpuScene {
                 .min(limits.max_storage_buffer_binding_size)
                 .min(limits.max_buffer_size)
         };
-        let (tets, tet_chunk) = chunked(ctx, "tetrahedra", &data.tets, 2, cap(tet_limit))?;
+        let (tets, tet_chunk) = chunked(ctx, "tetrahedra", &data.tets, TET_WORDS, cap(tet_limit))?;
         let (points, point_chunk) = chunked(ctx, "points", &data.points, 1, cap(point_limit))?;
         let point_count = data.points.len();
         let bvh_bytes = std::mem::size_of_val(data.bvh.as_slice()) as u64;

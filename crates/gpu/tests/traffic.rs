@@ -1,9 +1,10 @@
 //! The kernel's mesh traffic, counted by its CPU twin (whose loads are the
 //! kernel's one for one): a step carries the three vertices of the face it
-//! crosses over from the previous cell and reads one new point, so the walk
-//! reads at most 48 bytes per tetrahedron stepped (vertex ids, neighbours,
-//! one point) instead of 96 with all four points reloaded. The entry
-//! queries' reads of the BVH are counted beside it.
+//! crosses over from the previous cell, finds the new one from the XOR in
+//! the cell's compact record and reads that one point and the neighbour
+//! across the exit face: 24 bytes per tetrahedron stepped, where a record
+//! of vertex ids and neighbours and all four points reloaded would be 96.
+//! The entry queries' reads of the BVH are counted beside it.
 
 use tetray_core::Camera;
 use tetray_gpu::twin::{render, render_traffic};
@@ -56,18 +57,18 @@ fn a_step_reads_one_new_point() {
         steps > 10 * rays / 2,
         "the view walks the mesh: {steps} steps"
     );
-    // Every entry loads a whole cell (4 points); every step that moves on
-    // loads one point. At most one step per entry, and one per ray (early
-    // termination, a failure), does not move on.
-    let most = RECORD * (steps + 3 * entries);
-    let least = RECORD * (steps + 3 * entries).saturating_sub(entries + rays);
+    // Every entry loads the three points of its face; every step loads the
+    // one new point.
+    assert_eq!(traffic.point_bytes, RECORD * (steps + 3 * entries));
+    // Every step reads its record's XOR and, unless the ray stops in the
+    // cell (at most once per entry and once per ray: early termination, a
+    // failure), the one neighbour across its exit face.
+    let (most, least) = (8 * steps, 8 * steps - 4 * (entries + rays));
     assert!(
-        (least..=most).contains(&traffic.point_bytes),
-        "point bytes {} outside [{least}, {most}]",
-        traffic.point_bytes
+        (least..=most).contains(&traffic.tet_bytes),
+        "tetrahedron bytes {} outside [{least}, {most}]",
+        traffic.tet_bytes
     );
-    // Vertex ids once per cell, neighbours once per step.
-    assert!(traffic.tet_bytes <= RECORD * (entries + 2 * steps));
     let per_step = traffic.walk_bytes() as f64 / steps as f64;
     eprintln!(
         "Blunt Fin 48x48: {steps} steps, {entries} entries, {per_step:.1} mesh bytes per step \
@@ -75,9 +76,8 @@ fn a_step_reads_one_new_point() {
         traffic.point_bytes as f64 / steps as f64,
         traffic.tet_bytes as f64 / steps as f64
     );
-    // Measured 48.6 (the entries' whole cells on top of 48); reloading all
-    // four points would be about 96.
-    assert!(per_step < 56.0, "{per_step} mesh bytes per step");
+    // Measured 24.6 (the entries' faces on top of 24).
+    assert!(per_step < 28.0, "{per_step} mesh bytes per step");
 
     // Every ray asks at least once; every query but a ray's last finds an
     // entry. Each query reads at least the root's two records, and each

@@ -6,8 +6,7 @@
 
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
-use tetray_mesh::NO_NEIGHBOR;
-use tetray_scene::{FINAL_EXIT, Scene};
+use tetray_scene::Scene;
 
 use crate::ProjectError;
 
@@ -24,7 +23,7 @@ pub struct ProjectScene {
     /// Point indices, positively oriented.
     pub tets: Vec<[u32; 4]>,
     /// Across face `j` (opposite vertex `j`): the neighbouring tetrahedron,
-    /// or [`NO_NEIGHBOR`].
+    /// or [`tetray_mesh::NO_NEIGHBOR`].
     pub neighbors: Vec<[u32; 4]>,
     /// Outward plane of face `j`: unit normal and offset (`n . x = offset`
     /// on the face). Both tetrahedra of a shared face hold the same plane
@@ -42,21 +41,19 @@ pub struct ProjectScene {
 impl ProjectScene {
     pub fn new(scene: &Scene) -> Result<ProjectScene, ProjectError> {
         let points = scene.point_records().to_vec();
-        let walk = scene.walk_records();
-        if walk.is_empty() {
+        let (cells, neighbors) = (&scene.mesh.tets, &scene.topology.neighbors);
+        if cells.is_empty() {
             return Err(ProjectError::Empty);
         }
         let position = |v: u32| {
             let p = points[v as usize];
             DVec3::new(f64::from(p[0]), f64::from(p[1]), f64::from(p[2]))
         };
-        let oriented: Vec<([u32; 4], [u32; 4])> = walk
+        let oriented: Vec<([u32; 4], [u32; 4])> = cells
             .par_iter()
-            .map(|record| {
-                let mut verts = record.verts;
-                let mut next = record
-                    .next
-                    .map(|n| if n >= FINAL_EXIT { NO_NEIGHBOR } else { n >> 2 });
+            .zip(neighbors)
+            .map(|(&verts, &next)| {
+                let (mut verts, mut next) = (verts, next);
                 let [a, b, c, d] = verts.map(position);
                 if (b - a).dot((c - a).cross(d - a)) < 0.0 {
                     // Swapping vertices 2 and 3 swaps the faces opposite them.

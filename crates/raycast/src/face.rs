@@ -75,8 +75,9 @@ const NONE: u8 = 3;
 /// of the entry face that the exit face leaves out: the exit is
 /// `(v_{k+1}, v_{k+2}, d)`, whose edges are all positive exactly when
 /// `E(d, v_{k+1}) > 0` and `E(d, v_{k+2}) < 0` (its third edge is the entry
-/// face's, positive already).
-const EXCLUDED: [u8; 8] = [NONE, 2, 0, 0, 1, 2, 1, NONE];
+/// face's, positive already); 3 where all signs agree. The GPU kernel
+/// holds the same table.
+pub const LEFT_OUT_SLOT: [u8; 8] = [NONE, 2, 0, 0, 1, 2, 1, NONE];
 /// The slots following and preceding slot `k` in the face's cyclic order.
 const FOLLOWING: [usize; 4] = [1, 2, 0, 0];
 const PRECEDING: [usize; 4] = [2, 0, 1, 0];
@@ -147,6 +148,22 @@ impl Face {
         (face, value as f32)
     }
 
+    /// The point index of the vertex opposite this face in the
+    /// tetrahedron whose point indices XOR to `vert_xor`.
+    #[inline(always)]
+    pub fn opposite(&self, vert_xor: u32) -> u32 {
+        vert_xor ^ self.id[0] ^ self.id[1] ^ self.id[2]
+    }
+
+    /// The rank of point index `id` among those of the tetrahedron made of
+    /// this face and `id` (how many of the face's are smaller): the slot
+    /// of the neighbour across the face opposite `id`
+    /// ([`tetray_scene::vertex_rank`]).
+    #[inline(always)]
+    pub fn rank(&self, id: u32) -> usize {
+        usize::from(self.id[0] < id) + usize::from(self.id[1] < id) + usize::from(self.id[2] < id)
+    }
+
     /// Leaves the tetrahedron whose vertex opposite this face is `d`:
     /// `(point index of the entry face's vertex not on the exit face,
     /// distance, scalar)` at the exit face, or `None` for a degenerate
@@ -173,7 +190,7 @@ impl Face {
         } else {
             (lanes::positive_mask(e) & 7) as usize
         };
-        let k = EXCLUDED[code];
+        let k = LEFT_OUT_SLOT[code];
         if k == NONE {
             return None;
         }
@@ -213,14 +230,6 @@ impl Face {
         self.edge[prev] = -e[prev];
         Some((left_out, t, value))
     }
-}
-
-/// The local index in `verts` of point `id` (one of them).
-#[inline(always)]
-pub(crate) fn local_index(verts: [u32; 4], id: u32) -> usize {
-    // A tetrahedron's four points differ; an `id` not among them (which
-    // the callers never pass) gives 3.
-    (lanes::equal_mask(verts, id) | 8).trailing_zeros() as usize & 3
 }
 
 #[cfg(test)]
@@ -299,11 +308,23 @@ mod tests {
         assert!(checked > 15_000, "only {checked} tetrahedra checked");
     }
 
+    /// The carried face and the XOR give the fourth vertex, and the rank
+    /// of a left-out vertex is the scene's.
     #[test]
-    fn local_index_finds_each_vertex() {
+    fn the_record_names_the_apex_and_the_neighbour() {
         let verts = [7, 3, 11, 5];
-        for (i, &v) in verts.iter().enumerate() {
-            assert_eq!(local_index(verts, v), i);
+        let xor = verts.iter().fold(0, |x, &v| x ^ v);
+        for skip in 0..4 {
+            let mut face = Face::EMPTY;
+            let others = (0..4).filter(|&i| i != skip).map(|i| verts[i]);
+            for (slot, id) in others.enumerate() {
+                face.id[slot] = id;
+            }
+            assert_eq!(face.opposite(xor), verts[skip]);
+            assert_eq!(
+                face.rank(verts[skip]),
+                tetray_scene::vertex_rank(verts, verts[skip])
+            );
         }
     }
 }

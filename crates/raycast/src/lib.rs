@@ -10,7 +10,6 @@
 
 mod cpu;
 mod entries;
-mod exits;
 mod face;
 mod fragment;
 mod holes;
@@ -21,6 +20,6 @@ pub use cpu::{
     render_cpu_watched, render_cpu_with_progress, render_scalar, render_scalar_watched,
     render_scalar_with_progress, trace_pixel, wide_cpu,
 };
-pub use exits::packed_exit_table;
+pub use face::LEFT_OUT_SLOT;
 pub use fragment::{Fragment, FragmentOutput, render_fragments, render_scalar_fragments};
 pub use walk::SegmentIntegrator;

@@ -10,7 +10,7 @@ use tetray_integrate::fastmath::max_f32;
 use tetray_integrate::{SampledSegment, SegmentLight};
 
 use crate::entries::EntryList;
-use crate::face::{Face, Vertex, local_index};
+use crate::face::{Face, Vertex};
 use crate::holes::Holes;
 use tetray_scene::{FINAL_EXIT, Scene};
 
@@ -147,7 +147,6 @@ pub(crate) struct Walker<S> {
     /// ([`crate::entries`]); otherwise the BVH is asked.
     entries: Option<EntryList>,
     tet: usize,
-    f_in: usize,
     /// Distance and scalar at the exit of the step in progress.
     t_exit: f32,
     s_out: f32,
@@ -184,7 +183,6 @@ impl<S: Copy + Default> Walker<S> {
             skip_t: f32::NAN,
             entries: None,
             tet: 0,
-            f_in: 0,
             t_exit: 0.0,
             s_out: 0.0,
             crossing: FINAL_EXIT,
@@ -369,10 +367,13 @@ impl<S: Copy + Default> Walker<S> {
             return;
         };
         self.tet = bf.tet as usize;
-        self.f_in = usize::from(bf.local_face);
-        let verts = scene.walk_records()[self.tet].verts;
-        (self.face, self.s_in) =
-            Face::enter(scene.point_records(), &self.projector, verts, self.f_in);
+        let verts = scene.mesh.tets[self.tet];
+        (self.face, self.s_in) = Face::enter(
+            scene.point_records(),
+            &self.projector,
+            verts,
+            usize::from(bf.local_face),
+        );
         self.t_in = hit.t.max(self.t_cursor);
         self.sample_in = integrator.sample(self.s_in);
         self.interval_depth = self.t_in.max(0.0);
@@ -392,7 +393,7 @@ impl<S: Copy + Default> Walker<S> {
             // which, whose outcome is as good as random.
             let last = scene.walk_records().len() - 1;
             for &next in &record.next {
-                let index = ((next >> 2) as usize).min(last);
+                let index = (next as usize).min(last);
                 tetray_memory::prefetch(&scene.walk_records()[index]);
             }
         }
@@ -403,11 +404,12 @@ impl<S: Copy + Default> Walker<S> {
             self.phase = Phase::Done;
             return;
         }
-        // Of this cell only the vertex opposite the entry face is new.
+        // Of this cell only the vertex opposite the entry face is new: the
+        // XOR of the record's and the face's point indices.
         let apex = Vertex::load(
             scene.point_records(),
             &self.projector,
-            record.verts[self.f_in & 3],
+            self.face.opposite(record.vert_xor),
         );
         let Some((left_out, t_exit, s_out)) = self.face.exit(apex) else {
             // Only a degenerate (flat) tetrahedron has no exit face.
@@ -418,8 +420,8 @@ impl<S: Copy + Default> Walker<S> {
         self.t_exit = t_exit;
         self.s_out = s_out;
         // The exit face is the one opposite the entry face's vertex it
-        // leaves out.
-        self.crossing = record.next[local_index(record.verts, left_out)];
+        // leaves out, whose rank among the cell's four names the neighbour.
+        self.crossing = record.next[self.face.rank(left_out)];
         self.phase = Phase::Crossing;
     }
 
@@ -498,8 +500,7 @@ impl<S: Copy + Default> Walker<S> {
             }
             return;
         }
-        self.tet = (next >> 2) as usize;
-        self.f_in = (next & 3) as usize;
+        self.tet = next as usize;
         self.phase = Phase::Walking;
     }
 }

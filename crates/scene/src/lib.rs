@@ -11,6 +11,7 @@
 
 pub mod order;
 pub mod overlaps;
+mod records;
 mod scene;
 
 pub use order::Reorder;
@@ -18,4 +19,5 @@ pub use overlaps::{
     MAX_OVERLAP_CROSSINGS, OverlapCrossing, Overlaps, collect_crossings, line_meets_box,
     window_segments,
 };
-pub use scene::{CellOrder, FINAL_EXIT, Scene, SceneError, WalkTet};
+pub use records::{FINAL_EXIT, WalkTet, vertex_rank};
+pub use scene::{CellOrder, Scene, SceneError};

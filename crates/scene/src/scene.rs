@@ -1,10 +1,6 @@
 //! A mesh made ready for ray casting: topology, boundary BVH, the active
 //! scalar field, and a compact copy of what the walk reads per step.
-
-use std::sync::atomic::{AtomicBool, Ordering};
-
 use glam::Vec3;
-use rayon::prelude::*;
 use tetray_boundary_bvh::{BoundaryBvh, BuildPreset, BvhError};
 use tetray_mesh::{
     FACE_VERTICES, LoadedMesh, NO_NEIGHBOR, ScalarField, TetMesh, Topology, first_position,
@@ -12,6 +8,7 @@ use tetray_mesh::{
 
 use crate::order::{Reorder, inverse, morton_reorder};
 use crate::overlaps::Overlaps;
+use crate::records::{FINAL_EXIT, WalkTet, check_neighbors_in_range, vertex_rank, walk_tets};
 
 /// Why a [`Scene`] could not be made from a mesh.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -61,22 +58,6 @@ pub enum SceneError {
     #[error(transparent)]
     Bvh(#[from] BvhError),
 }
-
-/// One tetrahedron as the walk reads it: 32 bytes, one load per step.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[repr(C, align(32))]
-pub struct WalkTet {
-    /// Point indices.
-    pub verts: [u32; 4],
-    /// Across local face `f`: `(neighbour << 2) | its local face index of
-    /// the shared face`; on the boundary [`NO_NEIGHBOR`], or [`FINAL_EXIT`]
-    /// where no ray leaving through the face can meet the mesh again.
-    pub next: [u32; 4],
-}
-
-/// `WalkTet::next` of a boundary face on the mesh's convex hull: a ray
-/// leaving through it is done (`BoundaryBvh::final_exit_faces`).
-pub const FINAL_EXIT: u32 = NO_NEIGHBOR - 1;
 
 /// A mesh ready to be ray cast with one active scalar field.
 #[derive(Clone)]
@@ -167,6 +148,14 @@ impl Scene {
             CellOrder::File => None,
             CellOrder::Morton => Some(morton_reorder(&mut mesh, &mut topology, &mut scalar)),
         };
+        // A boundary face's points in its tetrahedron's order (a rotation
+        // of them was checked above): the CPU walk enters by the
+        // tetrahedron, the GPU kernel by the points the BVH tested, and
+        // both then cross the face with the same bits.
+        for bf in &mut topology.boundary_faces {
+            let tet = mesh.tets[bf.tet as usize];
+            bf.vertices = FACE_VERTICES[usize::from(bf.local_face)].map(|v| tet[v]);
+        }
         // The BVH build is serial (obvhs): it runs beside the parallel
         // walk records.
         let (walk, bvh) = rayon::join(
@@ -176,7 +165,9 @@ impl Scene {
         let (mut walk, bvh) = (walk?, bvh?);
         for (face, is_final) in topology.boundary_faces.iter().zip(bvh.final_exit_faces()) {
             if is_final {
-                walk[face.tet as usize].next[usize::from(face.local_face)] = FINAL_EXIT;
+                let verts = mesh.tets[face.tet as usize];
+                let rank = vertex_rank(verts, verts[usize::from(face.local_face)]);
+                walk[face.tet as usize].next[rank] = FINAL_EXIT;
             }
         }
         let points = mesh
@@ -354,9 +345,10 @@ impl Scene {
         self.walk.len()
     }
 
-    /// What the walk reads per tetrahedron: its points and, across each
-    /// local face, `neighbour << 2 | its local face` or a boundary marker
-    /// (`NO_NEIGHBOR`, [`FINAL_EXIT`]). The GPU kernel uploads this.
+    /// What the walk reads per tetrahedron ([`WalkTet`]): the XOR of its
+    /// points and its neighbours by the rank of the vertex opposite each
+    /// (or a boundary marker, `NO_NEIGHBOR`, [`FINAL_EXIT`]). The GPU
+    /// kernel uploads this.
     #[inline]
     pub fn walk_records(&self) -> &[WalkTet] {
         &self.walk
@@ -422,127 +414,6 @@ fn active_values(
         });
     }
     Ok(field.values.clone())
-}
-
-/// Packs vertices and neighbours, finding for every shared face the
-/// neighbour's local index of it (the neighbour's vertex off the face): the
-/// walk then knows which vertex of the next tetrahedron is new.
-fn walk_tets(
-    mesh: &TetMesh,
-    topology: &Topology,
-    order: Option<&Reorder>,
-) -> Result<Vec<WalkTet>, SceneError> {
-    // In parallel, straight into place (an indexed collect: collecting
-    // `Result`s would gather pieces and copy them, 0.4 s at 10 M
-    // tetrahedra); on a bad mesh the error of the first bad tetrahedron.
-    let bad = AtomicBool::new(false);
-    let walk = mesh
-        .tets
-        .par_iter()
-        .zip(&topology.neighbors)
-        .enumerate()
-        .map(|t| {
-            walk_record(mesh, t).unwrap_or_else(|_| {
-                bad.store(true, Ordering::Relaxed);
-                WalkTet {
-                    verts: *t.1.0,
-                    next: [NO_NEIGHBOR; 4],
-                }
-            })
-        })
-        .collect();
-    if bad.into_inner() {
-        return Err(first_bad(mesh, topology, order));
-    }
-    Ok(walk)
-}
-
-/// Every neighbour id names a tetrahedron (what the renumbering needs; the
-/// walk records check the rest).
-fn check_neighbors_in_range(topology: &Topology) -> Result<(), SceneError> {
-    let n = topology.neighbors.len();
-    let bad = |row: &[u32; 4]| {
-        row.iter()
-            .position(|&nb| nb != NO_NEIGHBOR && nb as usize >= n)
-    };
-    match first_position(&topology.neighbors, |row| bad(row).is_some()) {
-        None => Ok(()),
-        Some(tet) => {
-            let face = bad(&topology.neighbors[tet]).unwrap_or_default();
-            Err(SceneError::BadNeighbor {
-                tet,
-                face,
-                neighbor: topology.neighbors[tet][face],
-            })
-        }
-    }
-}
-
-/// The error of the bad tetrahedron with the smallest input id, named by
-/// its input ids (`order` maps the scene's ids back).
-fn first_bad(mesh: &TetMesh, topology: &Topology, order: Option<&Reorder>) -> SceneError {
-    let input_tet = |t: usize| order.map_or(t, |o| o.tet_from[t] as usize);
-    let bad = mesh
-        .tets
-        .par_iter()
-        .zip(&topology.neighbors)
-        .enumerate()
-        .filter_map(|t| walk_record(mesh, t).err())
-        .map(|e| match e {
-            SceneError::BadNeighbor {
-                tet,
-                face,
-                neighbor,
-            } => SceneError::BadNeighbor {
-                tet: input_tet(tet),
-                face,
-                neighbor: order
-                    .and_then(|o| o.tet_from.get(neighbor as usize).copied())
-                    .unwrap_or(neighbor),
-            },
-            other => other,
-        })
-        .min_by_key(|e| match e {
-            SceneError::BadNeighbor { tet, .. } => *tet,
-            _ => usize::MAX,
-        });
-    // walk_record failed on some tetrahedron, so `bad` holds its error.
-    bad.unwrap_or(SceneError::Empty)
-}
-
-/// The record of one tetrahedron, checking that each neighbour shares the
-/// face.
-fn walk_record(
-    mesh: &TetMesh,
-    (tet, (verts, neighbors)): (usize, (&[u32; 4], &[u32; 4])),
-) -> Result<WalkTet, SceneError> {
-    let mut next = [NO_NEIGHBOR; 4];
-    for (face, &neighbor) in neighbors.iter().enumerate() {
-        if neighbor == NO_NEIGHBOR {
-            continue;
-        }
-        let bad = || SceneError::BadNeighbor {
-            tet,
-            face,
-            neighbor,
-        };
-        let other = mesh.tets.get(neighbor as usize).ok_or_else(bad)?;
-        let [a, b, c] = FACE_VERTICES[face].map(|v| verts[v]);
-        // Bit `i` set when the neighbour's vertex `i` is off the shared
-        // face: exactly one must be (branch-free; which one is random).
-        let off = (0..4).fold(0u32, |off, i| {
-            let on = other[i] == a || other[i] == b || other[i] == c;
-            off | u32::from(!on) << i
-        });
-        if off.count_ones() != 1 || neighbor as usize == tet {
-            return Err(bad());
-        }
-        next[face] = (neighbor << 2) | off.trailing_zeros();
-    }
-    Ok(WalkTet {
-        verts: *verts,
-        next,
-    })
 }
 
 /// The walk starts from a boundary face's tetrahedron and local face, and

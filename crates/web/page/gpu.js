@@ -10,6 +10,9 @@ const WORKGROUP = 8;
 const STAT_COUNT = 10;
 // Interval entries (vec4) per knot interval: the quantity is entries 2, 3.
 const INTERVAL_ENTRIES = 4;
+// Bytes per tetrahedron (tetray_scene::WalkTet: the XOR of its point
+// indices and four neighbours).
+const TET_BYTES = 20;
 
 class PageError extends Error {}
 
@@ -72,7 +75,7 @@ class Raycaster {
     this.manifest = manifest;
     this.buffers = buffers;
     const limit = Math.min(device.limits.maxStorageBufferBindingSize, device.limits.maxBufferSize);
-    const tets = chunked(device, "tetrahedra", buffers.tets, 32, limit);
+    const tets = chunked(device, "tetrahedra", buffers.tets, TET_BYTES, limit);
     const points = chunked(device, "points", buffers.points, 16, limit);
     if (buffers.bvh.length > device.limits.maxStorageBufferBindingSize) {
       throw new PageError(`the boundary BVH takes ${buffers.bvh.length} bytes; this adapter binds at most ` +

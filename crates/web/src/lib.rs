@@ -12,8 +12,8 @@
 //! What a page can hold: the tetrahedra and the points may each be split
 //! over two storage bindings, as the native upload does, so a page needs an
 //! adapter whose `maxStorageBufferBindingSize` is at least half the larger
-//! array ([`Limits`]); WebGPU guarantees 128 MiB (4.2 M tetrahedra per
-//! binding, 8.4 M in all). Each buffer's text must fit in one browser
+//! array ([`Limits`]); WebGPU guarantees 128 MiB (6.7 M tetrahedra per
+//! binding, 13.4 M in all). Each buffer's text must fit in one browser
 //! string ([`page::MAX_BUFFER_TEXT`]).
 
 pub mod bundle;
@@ -39,6 +39,9 @@ pub enum WebError {
 /// whose arrays fit in two such bindings each opens on every adapter.
 pub const GUARANTEED_BINDING: u64 = 128 << 20;
 
+/// Bytes per tetrahedron in the kernel's array ([`tetray_scene::WalkTet`]).
+const TET_BYTES: u64 = 4 * tetray_gpu::TET_WORDS as u64;
+
 /// The binding size a page's adapter needs, from its arrays.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Limits {
@@ -50,7 +53,10 @@ pub struct Limits {
 impl Limits {
     pub fn of(manifest: &Manifest) -> Limits {
         let half = |bytes: usize, element: u64| (bytes as u64 / element).div_ceil(2) * element;
-        let tets = half(manifest.buffers.get("tets").copied().unwrap_or(0), 32);
+        let tets = half(
+            manifest.buffers.get("tets").copied().unwrap_or(0),
+            TET_BYTES,
+        );
         let points = half(manifest.buffers.get("points").copied().unwrap_or(0), 16);
         let bvh = manifest.buffers.get("bvh").copied().unwrap_or(0) as u64;
         Limits {
@@ -78,27 +84,34 @@ mod tests {
                        "view_up": [0.0, 1.0, 0.0], "view_angle": 30.0, "parallel_scale": null},
             "size": [8, 8], "background": [1.0, 1.0, 1.0], "early_termination": 1.0,
             "max_steps": 1, "method": "ppi", "methods": [], "colormaps": [], "bench": null,
-            "buffers": {"tets": tets * 32, "points": points * 16, "bvh": bvh},
+            "buffers": {"tets": tets * TET_BYTES as usize, "points": points * 16, "bvh": bvh},
         });
         serde_json::from_value(json).expect("a manifest")
     }
 
+    /// The page's script splits the tetrahedra at whole records.
+    #[test]
+    fn the_page_knows_the_record_size() {
+        let script = include_str!("../page/gpu.js");
+        let line = script
+            .lines()
+            .find_map(|l| l.strip_prefix("const TET_BYTES = "))
+            .expect("TET_BYTES in gpu.js");
+        assert_eq!(line.trim_end_matches(';').parse::<u64>(), Ok(TET_BYTES));
+    }
+
     #[test]
     fn a_page_needs_half_its_larger_array_per_binding() {
-        // 8.4 M tetrahedra: two 128 MiB bindings hold them.
-        let fits = Limits::of(&manifest(
-            2 * (GUARANTEED_BINDING as usize / 32),
-            1000,
-            4096,
-        ));
-        assert_eq!(fits.binding_bytes, GUARANTEED_BINDING);
+        // 13.4 M tetrahedra: two 128 MiB bindings hold them.
+        let most = 2 * (GUARANTEED_BINDING / TET_BYTES) as usize;
+        let fits = Limits::of(&manifest(most, 1000, 4096));
+        assert_eq!(
+            fits.binding_bytes,
+            GUARANTEED_BINDING / TET_BYTES * TET_BYTES
+        );
         assert!(fits.guaranteed());
-        let more = Limits::of(&manifest(
-            2 * (GUARANTEED_BINDING as usize / 32) + 1,
-            1000,
-            4096,
-        ));
-        assert_eq!(more.binding_bytes, GUARANTEED_BINDING + 32);
+        let more = Limits::of(&manifest(most + 1, 1000, 4096));
+        assert!(more.binding_bytes > GUARANTEED_BINDING);
         assert!(!more.guaranteed());
         // A BVH is never split.
         let bvh = Limits::of(&manifest(10, 10, 200 << 20));

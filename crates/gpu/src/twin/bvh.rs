@@ -97,6 +97,8 @@ pub struct Entry {
     pub found: bool,
     pub face: u32,
     pub t: f32,
+    /// The face's point indices, in the order tested (all edges negative).
+    pub ids: [u32; 3],
 }
 
 #[derive(Debug, Clone, Copy, Default)]
@@ -127,6 +129,7 @@ pub fn first_entry(
         found: false,
         face: 0,
         t: t_max,
+        ids: [0; 3],
     };
     traffic.bvh_queries += 1;
     let slab = make_slab(ray, params.scene_abs_max);
@@ -159,6 +162,7 @@ pub fn first_entry(
                             found: true,
                             face: prim[3],
                             t,
+                            ids: [prim[0], prim[1], prim[2]],
                         };
                     }
                 }

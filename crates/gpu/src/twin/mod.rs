@@ -15,7 +15,7 @@ use tetray_core::{Camera, Image};
 use crate::GpuError;
 use crate::layout::{Params, STAT_COUNT};
 use crate::render::{GpuRenderOptions, frame_params};
-use crate::upload::{IntegratorData, SceneData};
+use crate::upload::{IntegratorData, SceneData, TET_WORDS};
 use bvh::{SKIP_MAX, Skip, face_entry, first_entry};
 use integrate::{IntegratorInputs, sample_at, sample_near, segment_light};
 use predicate::{Ray, crossing, crossing_from, edge_sign_of, edge_value, make_ray, project};
@@ -27,7 +27,7 @@ pub use integrate::{dawson, erfcx};
 pub struct Inputs<'a> {
     pub params: &'a Params,
     pub points: &'a [[f32; 4]],
-    pub tets: &'a [[u32; 4]],
+    pub tets: &'a [u32],
     pub bvh: &'a [[u32; 4]],
     pub integrator: IntegratorInputs<'a>,
 }
@@ -112,120 +112,79 @@ pub fn trace_pixel(
     Ok((color.to_array(), counters.as_stats()))
 }
 
-const FACE_VERTS: [[usize; 3]; 4] = [[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]];
-const APEX_OTHERS: [[usize; 3]; 4] = [[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]];
-/// The kernel's exit table (checked against the CPU walk's in tests).
-pub const APEX_EXITS: [[u32; 8]; 4] = [
-    [
-        0xffff, 0x0312, 0x0123, 0x0312, 0x0231, 0x0231, 0x0123, 0xffff,
-    ],
-    [
-        0xffff, 0x0203, 0x0320, 0x0320, 0x0032, 0x0203, 0x0032, 0xffff,
-    ],
-    [
-        0xffff, 0x0301, 0x0013, 0x0301, 0x0130, 0x0130, 0x0013, 0xffff,
-    ],
-    [
-        0xffff, 0x0102, 0x0210, 0x0210, 0x0021, 0x0102, 0x0021, 0xffff,
-    ],
-];
+/// The kernel's exit table (checked against the CPU walk's in tests): for
+/// the signs of the edges apex -> face slot `i` (bit `i` set when
+/// positive), the slot the exit face leaves out, or 3 for none.
+pub const LEFT_OUT_SLOT: [u32; 8] = [3, 2, 0, 0, 1, 2, 1, 3];
 const FAR: f32 = 3.4e38;
 const REENTRY_REL: f32 = tetray_boundary_bvh::REENTRY_REL;
-const NO_EXIT: u32 = 0xffff;
 
-struct Cell {
-    p: [Vec3; 4],
-    s: Vec4,
-    ids: [u32; 4],
+/// The kernel's `Face`: the face the ray entered its current cell
+/// through, projected (`p`), with scalars (`s`) and point indices, in the
+/// cyclic order in which every edge is positive.
+struct Face {
+    p: [Vec3; 3],
+    s: [f32; 3],
+    ids: [u32; 3],
 }
 
-/// A cell entered from the BVH: all four vertices loaded and projected.
-fn load_cell(input: &Inputs, ray: &Ray, tet: u32, traffic: &mut Traffic) -> Cell {
-    let v = input.tets[2 * tet as usize];
-    traffic.tet_bytes += RECORD_BYTES;
-    traffic.point_bytes += 4 * RECORD_BYTES;
-    let mut cell = Cell {
-        p: [Vec3::ZERO; 4],
-        s: Vec4::ZERO,
-        ids: v,
-    };
-    for (i, &vertex) in v.iter().enumerate() {
-        let q = input.point(vertex);
-        cell.p[i] = project(ray, q.truncate());
-        cell.s[i] = q.w;
-    }
-    cell
-}
-
-/// The neighbour `tet` entered through its face `f_in` from `cell`: the
-/// face's three vertices carried over from `cell` (the kernel's `carried`:
-/// the last vertex with a matching id, vertex 0 when none), the apex loaded
-/// and projected.
-fn next_cell(
-    input: &Inputs,
-    ray: &Ray,
-    cell: &Cell,
-    tet: u32,
-    f_in: usize,
-    traffic: &mut Traffic,
-) -> Cell {
-    let v = input.tets[2 * tet as usize];
-    let q = input.point(v[f_in]);
-    traffic.tet_bytes += RECORD_BYTES;
+/// The kernel's `load_vertex`.
+fn load_vertex(input: &Inputs, ray: &Ray, id: u32, traffic: &mut Traffic) -> (Vec3, f32) {
     traffic.point_bytes += RECORD_BYTES;
-    let mut next = Cell {
-        p: [Vec3::ZERO; 4],
-        s: Vec4::ZERO,
-        ids: v,
+    let q = input.point(id);
+    (project(ray, q.truncate()), q.w)
+}
+
+/// The kernel's `enter_face`: the face `ids` (all edges negative) reversed,
+/// and the scalar where the ray crosses it.
+fn enter_face(input: &Inputs, ray: &Ray, ids: [u32; 3], traffic: &mut Traffic) -> (Face, f32) {
+    let [a, b, c] = ids.map(|id| load_vertex(input, ray, id, traffic));
+    let x = crossing(a.0, b.0, c.0);
+    let s = x.weights.dot(Vec3::new(a.1, b.1, c.1));
+    let face = Face {
+        p: [a.0, c.0, b.0],
+        s: [a.1, c.1, b.1],
+        ids: [ids[0], ids[2], ids[1]],
     };
-    for (i, &vertex) in v.iter().enumerate() {
-        let (p, s) = if i == f_in {
-            (project(ray, q.truncate()), q.w)
-        } else {
-            let k = (1..4).rev().find(|&k| cell.ids[k] == vertex).unwrap_or(0);
-            (cell.p[k], cell.s[k])
-        };
-        next.p[i] = p;
-        next.s[i] = s;
-    }
-    next
+    (face, s)
 }
 
-fn face_scalar(cell: &Cell, f: usize) -> f32 {
-    let [a, b, c] = FACE_VERTS[f];
-    let x = crossing(cell.p[a], cell.p[b], cell.p[c]);
-    x.weights.dot(Vec3::new(cell.s[a], cell.s[b], cell.s[c]))
+/// The kernel's `tet_word`.
+fn tet_word(input: &Inputs, tet: u32, word: usize, traffic: &mut Traffic) -> u32 {
+    traffic.tet_bytes += 4;
+    input.tets[TET_WORDS * tet as usize + word]
 }
 
-/// `(face, t, s)` of the exit, or `None` for a flat tetrahedron.
-fn exit_cell(cell: &Cell, f_in: usize) -> Option<(usize, f32, f32)> {
-    let apex = f_in;
-    let pa = cell.p[apex];
-    let mut e = [0.0f32; 4];
+/// The kernel's `rank_of`.
+fn rank_of(face: &Face, id: u32) -> usize {
+    face.ids.iter().filter(|&&v| v < id).count()
+}
+
+/// The kernel's `exit_face`: `(left-out point index, t, s)` of the exit,
+/// or `None` for a flat tetrahedron; the exit face becomes `face`.
+fn exit_face(face: &mut Face, apex: u32, pa: Vec3, sa: f32) -> Option<(u32, f32, f32)> {
+    let mut e = [0.0f32; 3];
     let mut code = 0;
-    for (i, &k) in APEX_OTHERS[apex].iter().enumerate() {
-        let value = edge_value(pa, cell.p[k]);
-        e[k] = value;
-        if edge_sign_of(pa, cell.p[k], value) > 0 {
+    for (i, &p) in face.p.iter().enumerate() {
+        e[i] = edge_value(pa, p);
+        if edge_sign_of(pa, p, e[i]) > 0 {
             code |= 1 << i;
         }
     }
-    let packed = APEX_EXITS[apex][code];
-    if packed == NO_EXIT {
+    let k = LEFT_OUT_SLOT[code] as usize;
+    if k == 3 {
         return None;
     }
-    let (f, next, prev) = (
-        (packed & 0xf) as usize,
-        ((packed >> 4) & 0xf) as usize,
-        ((packed >> 8) & 0xf) as usize,
-    );
-    let w = Vec3::new(edge_value(cell.p[next], cell.p[prev]), -e[prev], e[next]);
-    let z = Vec3::new(pa.z, cell.p[next].z, cell.p[prev].z);
-    let x = crossing_from(w, z);
-    let s = x
-        .weights
-        .dot(Vec3::new(cell.s[apex], cell.s[next], cell.s[prev]));
-    Some((f, x.t, s))
+    let (next, prev) = ((k + 1) % 3, (k + 2) % 3);
+    let (pn, pp) = (face.p[next], face.p[prev]);
+    let w = Vec3::new(edge_value(pn, pp), -e[prev], e[next]);
+    let x = crossing_from(w, Vec3::new(pa.z, pn.z, pp.z));
+    let s = x.weights.dot(Vec3::new(sa, face.s[next], face.s[prev]));
+    let left_out = face.ids[k];
+    face.p[k] = pa;
+    face.s[k] = sa;
+    face.ids[k] = apex;
+    Some((left_out, x.t, s))
 }
 
 #[derive(Default)]
@@ -243,7 +202,7 @@ struct Counters {
 
 /// Bytes the kernel reads, counted at each of the twin's loads, which are
 /// the kernel's one for one: in the walk, from the mesh's arrays (the
-/// tetrahedra's vertex and neighbour records, the points); in the entry
+/// words of the tetrahedra's records, the points); in the entry
 /// queries, from the BVH array (nodes, leaf faces, the face-to-cell map)
 /// and the points of the faces tested. The integrator's small tables are
 /// not counted.
@@ -279,7 +238,7 @@ impl Traffic {
     }
 }
 
-/// One record of the tetrahedron, point or BVH array.
+/// One record of the point or BVH array.
 const RECORD_BYTES: u64 = 16;
 
 impl Counters {
@@ -396,12 +355,9 @@ fn cast_ray(input: &Inputs, px: u32, py: u32) -> (Vec4, Counters) {
             skip.faces[skip.len] = entry.face;
             skip.len += 1;
         }
-        let code = face_entry(input, entry.face, &mut counters.traffic);
-        let mut tet = code >> 2;
-        let mut f_in = (code & 3) as usize;
-        let mut cell = load_cell(input, &ray, tet, &mut counters.traffic);
+        let mut tet = face_entry(input, entry.face, &mut counters.traffic) >> 2;
+        let (mut face, mut s_in) = enter_face(input, &ray, entry.ids, &mut counters.traffic);
         let mut t_in = entry.t.max(t_cursor);
-        let mut s_in = face_scalar(&cell, f_in);
         let mut sample_in = sample_at(&input.integrator, s_in);
         loop {
             counters.steps += 1;
@@ -410,7 +366,12 @@ fn cast_ray(input: &Inputs, px: u32, py: u32) -> (Vec4, Counters) {
                 done = true;
                 break;
             }
-            let Some((f_out, t_exit, s_out)) = exit_cell(&cell, f_in) else {
+            let apex = tet_word(input, tet, 0, &mut counters.traffic)
+                ^ face.ids[0]
+                ^ face.ids[1]
+                ^ face.ids[2];
+            let (pa, sa) = load_vertex(input, &ray, apex, &mut counters.traffic);
+            let Some((left_out, t_exit, s_out)) = exit_face(&mut face, apex, pa, sa) else {
                 counters.failure = 1;
                 done = true;
                 break;
@@ -446,16 +407,18 @@ fn cast_ray(input: &Inputs, px: u32, py: u32) -> (Vec4, Counters) {
             t_in = t_out;
             s_in = s_out;
             sample_in = sample_out;
-            let next = input.tets[2 * tet as usize + 1][f_out];
-            counters.traffic.tet_bytes += RECORD_BYTES;
+            let next = tet_word(
+                input,
+                tet,
+                1 + rank_of(&face, left_out),
+                &mut counters.traffic,
+            );
             if next >= tetray_scene::FINAL_EXIT {
                 done = next == tetray_scene::FINAL_EXIT && !holes.iter().any(|c| c.t_out > t_out);
                 t_cursor = t_out;
                 break;
             }
-            tet = next >> 2;
-            f_in = (next & 3) as usize;
-            cell = next_cell(input, &ray, &cell, tet, f_in, &mut counters.traffic);
+            tet = next;
         }
     }
     let alpha = 1.0 - (trans.x + trans.y + trans.z) / 3.0;
