@@ -37,23 +37,53 @@ pub struct GreyKnots {
 }
 
 /// A scalar classified against grey knots.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, Default)]
 pub struct GreySample {
     /// Luminance in `xyz`, the lane quantity in `w`.
     pub material: Vec4,
-    pub scalar: f32,
-    pub interval: i32,
-    /// The interval's scalar range `[lo, hi)` (`-inf` before the first
-    /// knot, `+inf` after the last), so that the next sample is checked
-    /// against it without reading the knots (it fills the padding).
-    lo: f32,
-    hi: f32,
+    /// The scalar, its knot interval's index (its bits), and the
+    /// interval's scalar range `[lo, hi)` (`-inf` before the first knot,
+    /// `+inf` after the last), so that the next sample is checked against
+    /// it without reading the knots. One vector, so that a sample moves as
+    /// two vector loads and stores (the walk copies one per step).
+    key: Vec4,
 }
 
 impl GreySample {
     #[inline(always)]
     pub fn lum(&self) -> Vec3A {
         Vec3A::from_vec4(self.material)
+    }
+
+    #[inline(always)]
+    pub fn scalar(&self) -> f32 {
+        self.key.x
+    }
+
+    /// The knot interval: `-1` before the first knot, `k` from knot `k` on.
+    #[inline(always)]
+    pub fn interval(&self) -> i32 {
+        self.key.y.to_bits() as i32
+    }
+
+    #[inline(always)]
+    fn lo(&self) -> f32 {
+        self.key.z
+    }
+
+    #[inline(always)]
+    fn hi(&self) -> f32 {
+        self.key.w
+    }
+}
+
+impl PartialEq for GreySample {
+    fn eq(&self, other: &Self) -> bool {
+        self.material == other.material
+            && self.scalar() == other.scalar()
+            && self.interval() == other.interval()
+            && self.lo() == other.lo()
+            && self.hi() == other.hi()
     }
 }
 
@@ -108,20 +138,19 @@ impl GreyKnots {
     #[inline(always)]
     pub fn sample(&self, s: f32) -> GreySample {
         let k = self.scalars.partition_point(|&x| x <= s) as isize - 1;
+        let lo = if k < 0 {
+            f32::NEG_INFINITY
+        } else {
+            self.scalars[k as usize]
+        };
+        let hi = self
+            .scalars
+            .get((k + 1) as usize)
+            .copied()
+            .unwrap_or(f32::INFINITY);
         GreySample {
             material: self.in_interval(k, s),
-            scalar: s,
-            interval: k as i32,
-            lo: if k < 0 {
-                f32::NEG_INFINITY
-            } else {
-                self.scalars[k as usize]
-            },
-            hi: self
-                .scalars
-                .get((k + 1) as usize)
-                .copied()
-                .unwrap_or(f32::INFINITY),
+            key: Vec4::new(s, f32::from_bits(k as i32 as u32), lo, hi),
         }
     }
 
@@ -130,11 +159,10 @@ impl GreyKnots {
     /// test and is classified from scratch, to the same interval.)
     #[inline(always)]
     pub fn sample_near(&self, s: f32, near: &GreySample) -> GreySample {
-        if near.lo <= s && s < near.hi {
+        if near.lo() <= s && s < near.hi() {
             GreySample {
-                material: self.in_interval(near.interval as isize, s),
-                scalar: s,
-                ..*near
+                material: self.in_interval(near.interval() as isize, s),
+                key: near.key.with_x(s),
             }
         } else {
             self.sample(s)
@@ -153,8 +181,8 @@ impl GreyKnots {
     ) -> usize {
         split_at_knots(
             &self.scalars,
-            front.scalar,
-            back.scalar,
+            front.scalar(),
+            back.scalar(),
             length,
             |k, s| self.in_interval(k, s),
             |s| self.sample(s).material,
@@ -203,7 +231,7 @@ mod tests {
             let near = grey_knots.sample(from);
             for &s in &values {
                 let (a, b) = (grey_knots.sample_near(s, &near), grey_knots.sample(s));
-                assert_eq!(a.interval, b.interval, "{s} near {from}");
+                assert_eq!(a.interval(), b.interval(), "{s} near {from}");
                 assert_eq!(
                     a.material.to_array().map(f32::to_bits),
                     b.material.to_array().map(f32::to_bits),

@@ -225,7 +225,7 @@ impl<W: WeightKernel> Grey<'_, W> {
     /// within one knot interval (the common case), or with no splitting.
     #[inline(always)]
     fn one_piece(&self, front: &GreySample, back: &GreySample) -> bool {
-        front.interval == back.interval || !self.split
+        front.interval() == back.interval() || !self.split
     }
 
     #[inline(always)]
