@@ -11,7 +11,6 @@
 use glam::Vec4;
 use tetray_core::watertight::{Projector, RayPoint, crossing_barycentric, edge_sign};
 use tetray_integrate::fastmath::{clamp_f32, max_f32, min_f32};
-use tetray_mesh::FACE_VERTICES;
 use tetray_wide::lanes;
 
 /// One vertex in the frame of a ray: its position across the ray (`x`,
@@ -130,13 +129,13 @@ impl Face {
         self.id[i] = v.id;
     }
 
-    /// Enters the tetrahedron with point indices `verts` through its local
-    /// face `f` (all of whose edges are negative in the tetrahedron's own
-    /// order, as for every face a ray enters through): the face, and the
-    /// scalar at the crossing.
+    /// Enters a tetrahedron through its face with point indices `face`
+    /// (in the tetrahedron's order, [`tetray_mesh::FACE_VERTICES`], in
+    /// which all of its edges are negative, as for every face a ray enters
+    /// through): the face, and the scalar at the crossing.
     #[inline]
-    pub fn enter(points: &[[f32; 4]], ray: &Projector, verts: [u32; 4], f: usize) -> (Face, f32) {
-        let [a, b, c] = FACE_VERTICES[f].map(|i| Vertex::load(points, ray, verts[i]));
+    pub fn enter(points: &[[f32; 4]], ray: &Projector, face: [u32; 3]) -> (Face, f32) {
+        let [a, b, c] = face.map(|id| Vertex::load(points, ray, id));
         let (_, w) = crossing_barycentric(a.point(), b.point(), c.point());
         let value = w[0] * f64::from(a.s) + w[1] * f64::from(b.s) + w[2] * f64::from(c.s);
         // Reversed, the face's edges are positive.
@@ -156,23 +155,26 @@ impl Face {
     }
 
     /// The rank of point index `id` among those of the tetrahedron made of
-    /// this face and `id` (how many of the face's are smaller): the slot
-    /// of the neighbour across the face opposite `id`
+    /// this face and `d` (how many of the four are smaller; `id` is one of
+    /// them): the slot of the neighbour across the face opposite `id`
     /// ([`tetray_scene::vertex_rank`]).
     #[inline(always)]
-    pub fn rank(&self, id: u32) -> usize {
-        usize::from(self.id[0] < id) + usize::from(self.id[1] < id) + usize::from(self.id[2] < id)
+    fn rank(&self, d: u32, id: u32) -> usize {
+        let mut ids = self.id;
+        ids[3] = d;
+        lanes::count_below(ids, id) as usize
     }
 
     /// Leaves the tetrahedron whose vertex opposite this face is `d`:
-    /// `(point index of the entry face's vertex not on the exit face,
-    /// distance, scalar)` at the exit face, or `None` for a degenerate
-    /// cell. The exit face becomes this face: the next cell's entry face.
+    /// `(rank of the entry face's vertex not on the exit face among the
+    /// tetrahedron's four, distance, scalar)` at the exit face, or `None`
+    /// for a degenerate cell: the rank names the neighbour across the exit
+    /// face. The exit face becomes this face: the next cell's entry face.
     ///
     /// The distance and scalar are barycentric in the exit face's edge
     /// functions, with `d`, then the vertices following and preceding it.
     #[inline(always)]
-    pub fn exit(&mut self, d: Vertex) -> Option<(u32, f32, f32)> {
+    pub fn exit(&mut self, d: Vertex) -> Option<(usize, f32, f32)> {
         // E(d, v_i) of the three slots (and of the unused fourth) at once,
         // with `Vertex::edge`'s operations.
         let e: [f64; 4] = std::array::from_fn(|i| d.x * self.y[i] - d.y * self.x[i]);
@@ -223,12 +225,13 @@ impl Face {
                 (w[0] * f64::from(s[0]) + w[1] * f64::from(s[1]) + w[2] * f64::from(s[2])) * inv;
             (clamp_f32(t as f32, lo, hi), value as f32)
         };
-        let left_out = self.id[k];
+        // Ranked before the face changes, from the indices at hand.
+        let rank = self.rank(d.id, self.id[k]);
         // The exit face in cyclic order (d, next, prev): d takes slot k.
         self.set(k, d);
         self.edge[k] = e[next];
         self.edge[prev] = -e[prev];
-        Some((left_out, t, value))
+        Some((rank, t, value))
     }
 }
 
@@ -236,6 +239,7 @@ impl Face {
 mod tests {
     use glam::Vec3;
     use tetray_core::watertight::{RayFrame, cross_triangle};
+    use tetray_mesh::FACE_VERTICES;
 
     use super::*;
 
@@ -288,13 +292,15 @@ mod tests {
             };
             let points: Vec<[f32; 4]> = p.iter().map(|v| [v.x, v.y, v.z, v.x]).collect();
             let projector = Projector::new(&ray);
-            let (mut face, _) = Face::enter(&points, &projector, [0, 1, 2, 3], f);
+            let entry = FACE_VERTICES[f].map(|v| v as u32);
+            let (mut face, _) = Face::enter(&points, &projector, entry);
             let apex = Vertex::load(&points, &projector, f as u32);
-            let Some((left_out, t, _)) = face.exit(apex) else {
+            let Some((rank, t, _)) = face.exit(apex) else {
                 panic!("no exit from {p:?} entered through {f}");
             };
             // The face opposite vertex g is face g.
-            assert_eq!(left_out as usize, exit, "{p:?} entered through {f}");
+            // Point indices 0 to 3: a vertex's rank is its index.
+            assert_eq!(rank, exit, "{p:?} entered through {f}");
             let z = FACE_VERTICES[exit].map(|v| ray.project(p[v]).z);
             assert!(t >= z[0].min(z[1]).min(z[2]) && t <= z[0].max(z[1]).max(z[2]));
             // The carried face is the exit face, every edge positive.
@@ -309,7 +315,7 @@ mod tests {
     }
 
     /// The carried face and the XOR give the fourth vertex, and the rank
-    /// of a left-out vertex is the scene's.
+    /// of each vertex the exit may leave out is the scene's.
     #[test]
     fn the_record_names_the_apex_and_the_neighbour() {
         let verts = [7, 3, 11, 5];
@@ -320,11 +326,11 @@ mod tests {
             for (slot, id) in others.enumerate() {
                 face.id[slot] = id;
             }
-            assert_eq!(face.opposite(xor), verts[skip]);
-            assert_eq!(
-                face.rank(verts[skip]),
-                tetray_scene::vertex_rank(verts, verts[skip])
-            );
+            let apex = face.opposite(xor);
+            assert_eq!(apex, verts[skip]);
+            for &id in &face.id[..3] {
+                assert_eq!(face.rank(apex, id), tetray_scene::vertex_rank(verts, id));
+            }
         }
     }
 }

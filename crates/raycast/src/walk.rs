@@ -367,13 +367,7 @@ impl<S: Copy + Default> Walker<S> {
             return;
         };
         self.tet = bf.tet as usize;
-        let verts = scene.mesh.tets[self.tet];
-        (self.face, self.s_in) = Face::enter(
-            scene.point_records(),
-            &self.projector,
-            verts,
-            usize::from(bf.local_face),
-        );
+        (self.face, self.s_in) = Face::enter(scene.point_records(), &self.projector, bf.vertices);
         self.t_in = hit.t.max(self.t_cursor);
         self.sample_in = integrator.sample(self.s_in);
         self.interval_depth = self.t_in.max(0.0);
@@ -411,7 +405,7 @@ impl<S: Copy + Default> Walker<S> {
             &self.projector,
             self.face.opposite(record.vert_xor),
         );
-        let Some((left_out, t_exit, s_out)) = self.face.exit(apex) else {
+        let Some((rank, t_exit, s_out)) = self.face.exit(apex) else {
             // Only a degenerate (flat) tetrahedron has no exit face.
             counters.walk_failure = true;
             self.phase = Phase::Done;
@@ -421,7 +415,7 @@ impl<S: Copy + Default> Walker<S> {
         self.s_out = s_out;
         // The exit face is the one opposite the entry face's vertex it
         // leaves out, whose rank among the cell's four names the neighbour.
-        self.crossing = record.next[self.face.rank(left_out)];
+        self.crossing = record.next[rank & 3];
         self.phase = Phase::Crossing;
     }
 

@@ -1,13 +1,13 @@
 //! Comparisons of four lanes at once, each answered as a bit mask (bit `i`
-//! for lane `i`): the CPU walk's sign tests, one compare and one mask move
-//! where scalar code takes a compare, a flag move and a shift per lane.
-//! SSE2 is part of the x86-64 baseline; elsewhere the same masks come from
-//! scalar compares.
+//! for lane `i`) or counted: the CPU walk's sign tests and vertex ranks,
+//! one compare and one mask move where scalar code takes a compare, a flag
+//! move and a shift per lane. SSE2 is part of the x86-64 baseline;
+//! elsewhere the same answers come from scalar compares.
 
 #[cfg(target_arch = "x86_64")]
 use std::arch::x86_64::{
-    __m128d, _mm_castsi128_ps, _mm_cmpeq_epi32, _mm_cmpeq_pd, _mm_cmpgt_pd, _mm_movemask_pd,
-    _mm_movemask_ps, _mm_set_pd, _mm_set1_epi32, _mm_setr_epi32, _mm_setzero_pd,
+    __m128d, _mm_castsi128_ps, _mm_cmpeq_pd, _mm_cmpgt_pd, _mm_cmplt_epi32, _mm_loadu_si128,
+    _mm_movemask_pd, _mm_movemask_ps, _mm_set_pd, _mm_set1_epi32, _mm_setzero_pd, _mm_xor_si128,
 };
 
 /// Bit `i` set where `v[i] > 0` (false for a NaN and for either zero).
@@ -31,20 +31,23 @@ pub fn zero_mask(v: [f64; 4]) -> u32 {
     scalar_mask(v, |x| x == 0.0)
 }
 
-/// Bit `i` set where `v[i] == x`.
+/// How many lanes of `v` are below `x` (unsigned).
 #[inline(always)]
-pub fn equal_mask(v: [u32; 4], x: u32) -> u32 {
+pub fn count_below(v: [u32; 4], x: u32) -> u32 {
     #[cfg(target_arch = "x86_64")]
     {
-        // SAFETY: as in `positive_mask`; the `as i32` casts keep the bits.
-        unsafe {
-            let lanes = _mm_setr_epi32(v[0] as i32, v[1] as i32, v[2] as i32, v[3] as i32);
-            let equal = _mm_cmpeq_epi32(lanes, _mm_set1_epi32(x as i32));
-            _mm_movemask_ps(_mm_castsi128_ps(equal)) as u32
-        }
+        // SAFETY: as in `positive_mask`. SSE2 compares signed lanes:
+        // flipping the sign bit of both sides orders them as unsigned.
+        let mask = unsafe {
+            let flip = _mm_set1_epi32(i32::MIN);
+            let lanes = _mm_xor_si128(_mm_loadu_si128(v.as_ptr().cast()), flip);
+            let bound = _mm_xor_si128(_mm_set1_epi32(x as i32), flip);
+            _mm_movemask_ps(_mm_castsi128_ps(_mm_cmplt_epi32(lanes, bound)))
+        };
+        mask.count_ones()
     }
     #[cfg(not(target_arch = "x86_64"))]
-    (0..4).fold(0, |mask, i| mask | u32::from(v[i] == x) << i)
+    v.iter().map(|&lane| u32::from(lane < x)).sum()
 }
 
 /// The mask of `compare(lanes, 0)` over the four lanes of `v`, two at a
@@ -98,13 +101,15 @@ mod tests {
         }
     }
 
+    /// Unsigned order, across the sign bit too, in both builds.
     #[test]
-    fn equal_mask_finds_each_lane() {
-        let v = [7, u32::MAX, 11, 7];
-        assert_eq!(equal_mask(v, 7), 0b1001);
-        assert_eq!(equal_mask(v, u32::MAX), 0b0010);
-        assert_eq!(equal_mask(v, 11), 0b0100);
-        assert_eq!(equal_mask(v, 3), 0);
-        assert_eq!(crate::run(true, || equal_mask(v, 7)), 0b1001);
+    fn count_below_orders_lanes_unsigned() {
+        let v = [0, 7, 0x8000_0000, u32::MAX];
+        for x in [0, 1, 7, 8, 0x7fff_ffff, 0x8000_0000, 0x8000_0001, u32::MAX] {
+            let expected = v.iter().filter(|&&lane| lane < x).count() as u32;
+            for wide in [false, true] {
+                assert_eq!(crate::run(wide, || count_below(v, x)), expected, "{x:#x}");
+            }
+        }
     }
 }
