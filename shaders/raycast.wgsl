@@ -67,17 +67,19 @@ fn apex_of(face: Face, tet: u32) -> u32 {
     return tet_xor(tet) ^ face.ids.x ^ face.ids.y ^ face.ids.z;
 }
 
-// The rank of point index `id` among those of the tetrahedron made of
-// `face` and `id`: the slot of the neighbour across the face opposite it.
-fn rank_of(face: Face, id: u32) -> u32 {
+// The rank of point index `id` among the four of the tetrahedron made of
+// `face` and `apex` (how many are smaller; `id` is one of them): the slot
+// of the neighbour across the face opposite it.
+fn rank_of(face: Face, apex: u32, id: u32) -> u32 {
     let below = select(vec3<u32>(0u), vec3<u32>(1u), face.ids < vec3<u32>(id));
-    return below.x + below.y + below.z;
+    return below.x + below.y + below.z + select(0u, 1u, apex < id);
 }
 
 struct Exit {
     ok: bool,
-    // The point index of the entry face's vertex not on the exit face.
-    left_out: u32,
+    // The rank of the entry face's vertex not on the exit face: the slot
+    // of the neighbour across the exit face.
+    rank: u32,
     t: f32,
     s: f32,
 }
@@ -116,13 +118,13 @@ fn exit_face(face: ptr<function, Face>, apex: u32, pa: vec4<f32>) -> Exit {
     let w = vec3<f32>(edge_value(pn.xyz, pp.xyz), -e_prev, e_next);
     let x = crossing_from(w, vec3<f32>(pa.z, pn.z, pp.z));
     let s = dot(x.weights, vec3<f32>(pa.w, pn.w, pp.w));
-    let left_out = slot_id(f, k);
+    let rank = rank_of(f, apex, slot_id(f, k));
     // The apex takes slot k: (apex, next, prev) in the same cyclic order.
     (*face).v0 = select(f.v0, pa, k == 0u);
     (*face).v1 = select(f.v1, pa, k == 1u);
     (*face).v2 = select(f.v2, pa, k == 2u);
     (*face).ids = select(f.ids, vec3<u32>(apex), vec3<u32>(k) == vec3<u32>(0u, 1u, 2u));
-    return Exit(true, left_out, x.t, s);
+    return Exit(true, rank, x.t, s);
 }
 
 var<workgroup> group_stats: array<atomic<u32>, STAT_COUNT>;
@@ -246,7 +248,7 @@ fn cast_ray(px: u32, py: u32) -> Pixel {
             t_in = t_out;
             s_in = ex.s;
             sample_in = sample_out;
-            let next = tet_next(tet, rank_of(face, ex.left_out));
+            let next = tet_next(tet, ex.rank);
             if (next >= FINAL_EXIT) {
                 // Left through the convex hull: nothing more to meet but
                 // the gap of a left-out cell beyond; otherwise ask the BVH

@@ -156,13 +156,13 @@ fn tet_word(input: &Inputs, tet: u32, word: usize, traffic: &mut Traffic) -> u32
 }
 
 /// The kernel's `rank_of`.
-fn rank_of(face: &Face, id: u32) -> usize {
-    face.ids.iter().filter(|&&v| v < id).count()
+fn rank_of(face: &Face, apex: u32, id: u32) -> usize {
+    face.ids.iter().filter(|&&v| v < id).count() + usize::from(apex < id)
 }
 
-/// The kernel's `exit_face`: `(left-out point index, t, s)` of the exit,
-/// or `None` for a flat tetrahedron; the exit face becomes `face`.
-fn exit_face(face: &mut Face, apex: u32, pa: Vec3, sa: f32) -> Option<(u32, f32, f32)> {
+/// The kernel's `exit_face`: `(rank of the left-out vertex, t, s)` of the
+/// exit, or `None` for a flat tetrahedron; the exit face becomes `face`.
+fn exit_face(face: &mut Face, apex: u32, pa: Vec3, sa: f32) -> Option<(usize, f32, f32)> {
     let mut e = [0.0f32; 3];
     let mut code = 0;
     for (i, &p) in face.p.iter().enumerate() {
@@ -180,11 +180,11 @@ fn exit_face(face: &mut Face, apex: u32, pa: Vec3, sa: f32) -> Option<(u32, f32,
     let w = Vec3::new(edge_value(pn, pp), -e[prev], e[next]);
     let x = crossing_from(w, Vec3::new(pa.z, pn.z, pp.z));
     let s = x.weights.dot(Vec3::new(sa, face.s[next], face.s[prev]));
-    let left_out = face.ids[k];
+    let rank = rank_of(face, apex, face.ids[k]);
     face.p[k] = pa;
     face.s[k] = sa;
     face.ids[k] = apex;
-    Some((left_out, x.t, s))
+    Some((rank, x.t, s))
 }
 
 #[derive(Default)]
@@ -371,7 +371,7 @@ fn cast_ray(input: &Inputs, px: u32, py: u32) -> (Vec4, Counters) {
                 ^ face.ids[1]
                 ^ face.ids[2];
             let (pa, sa) = load_vertex(input, &ray, apex, &mut counters.traffic);
-            let Some((left_out, t_exit, s_out)) = exit_face(&mut face, apex, pa, sa) else {
+            let Some((rank, t_exit, s_out)) = exit_face(&mut face, apex, pa, sa) else {
                 counters.failure = 1;
                 done = true;
                 break;
@@ -407,12 +407,7 @@ fn cast_ray(input: &Inputs, px: u32, py: u32) -> (Vec4, Counters) {
             t_in = t_out;
             s_in = s_out;
             sample_in = sample_out;
-            let next = tet_word(
-                input,
-                tet,
-                1 + rank_of(&face, left_out),
-                &mut counters.traffic,
-            );
+            let next = tet_word(input, tet, 1 + rank, &mut counters.traffic);
             if next >= tetray_scene::FINAL_EXIT {
                 done = next == tetray_scene::FINAL_EXIT && !holes.iter().any(|c| c.t_out > t_out);
                 t_cursor = t_out;
