@@ -156,13 +156,12 @@ impl Face {
 
     /// The rank of point index `id` among those of the tetrahedron made of
     /// this face and `d` (how many of the four are smaller; `id` is one of
-    /// them): the slot of the neighbour across the face opposite `id`
-    /// ([`tetray_scene::vertex_rank`]).
+    /// them): the slot of the neighbour across the face opposite `id`.
     #[inline(always)]
     fn rank(&self, d: u32, id: u32) -> usize {
         let mut ids = self.id;
         ids[3] = d;
-        lanes::count_below(ids, id) as usize
+        tetray_scene::vertex_rank(ids, id)
     }
 
     /// Leaves the tetrahedron whose vertex opposite this face is `d`:

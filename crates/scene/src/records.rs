@@ -31,10 +31,11 @@ pub struct WalkTet {
 
 /// The rank of point index `id` among a tetrahedron's four (`verts`, all
 /// different, `id` one of them): how many are smaller. It is the slot of
-/// [`WalkTet::next`] across the face opposite `id`.
+/// [`WalkTet::next`] across the face opposite `id`. One compare of the
+/// four lanes: the walk ranks with it at every step.
 #[inline(always)]
 pub fn vertex_rank(verts: [u32; 4], id: u32) -> usize {
-    verts.iter().map(|&v| usize::from(v < id)).sum()
+    tetray_wide::lanes::count_below(verts, id) as usize
 }
 
 /// `WalkTet::next` of a boundary face on the mesh's convex hull: a ray
