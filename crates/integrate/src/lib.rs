@@ -32,6 +32,7 @@ pub mod kernels;
 mod knots;
 pub mod opacity;
 mod paraview;
+mod piecewise;
 pub mod ppi;
 pub mod preintegrated;
 pub mod psi;
