@@ -16,6 +16,7 @@
 //!   `M_k(b) = int_0^1 x^k exp(-b x) dx`; at `a = b = 0` this gives
 //!   `Psi = 1`, `I = I_0` (the `tau D -> 0` limit).
 
+use crate::fastmath::exp_f64_select;
 use crate::segment::{SegmentLight, SegmentParams, Weights, light_from_weights};
 use crate::special::{dawson, erfcx};
 
@@ -35,7 +36,7 @@ pub fn exact_zeta_psi(a: f64, b: f64) -> (f64, f64) {
     if a.is_infinite() || b.is_infinite() {
         return (0.0, 0.0);
     }
-    let zeta = (-0.5 * (a + b)).exp();
+    let zeta = exp_f64_select(-0.5 * (a + b));
     let c = 0.5 * (a - b);
     let psi = if c.abs() < SERIES_BELOW {
         psi_series(b, c, zeta)
@@ -154,19 +155,69 @@ fn even_moments(b: f64, c: f64, zeta: f64) -> [f64; 5] {
 #[inline]
 pub fn exact_weights(tau_d_back: f32, tau_d_front: f32) -> Weights {
     let (a, b) = (f64::from(tau_d_back), f64::from(tau_d_front));
-    let c = 0.5 * (a - b);
-    // False for a NaN, an infinity (c is then one or NaN) and a negative
-    // value, which `exact_zeta_psi` answers.
-    let (zeta, psi) = if c.abs() < SERIES_BELOW && a >= 0.0 && b >= 0.0 {
-        let zeta = (-0.5 * (a + b)).exp();
-        (zeta, psi_near_constant(b, c, zeta))
-    } else {
-        exact_zeta_psi(a, b)
+    let (zeta, psi) = match near_constant(a, b) {
+        Some(c) => {
+            let zeta = exp_f64_select(-0.5 * (a + b));
+            (zeta, psi_near_constant(b, c, zeta))
+        }
+        None => exact_zeta_psi(a, b),
     };
     Weights {
         zeta: zeta as f32,
         psi: psi as f32,
     }
+}
+
+/// `c = (a - b) / 2` where [`psi_near_constant`] applies: `|c| < 1e-3`,
+/// `a` and `b` not negative. `None` for a NaN, an infinity (c is then one
+/// or NaN) and a negative value, which [`exact_zeta_psi`] answers.
+#[inline(always)]
+fn near_constant(a: f64, b: f64) -> Option<f64> {
+    let c = 0.5 * (a - b);
+    (c.abs() < SERIES_BELOW && a >= 0.0 && b >= 0.0).then_some(c)
+}
+
+/// [`exact_weights`] of `N` segments, the same bits per lane where bit
+/// `i` of `live` is set (anything elsewhere). The nearly constant
+/// segments, nearly all of them on a fine mesh, are computed for every
+/// lane as vector arithmetic (the exponential and both of
+/// [`psi_near_constant`]'s moment recurrences run without a branch); the
+/// other live lanes are computed alone.
+#[inline(always)]
+pub fn exact_weights_lanes<const N: usize>(
+    back: &[f32; N],
+    front: &[f32; N],
+    live: u32,
+) -> [Weights; N] {
+    // Plain loops, each filling an array: `array::from_fn` with closures
+    // this large is left out of line (neither vectorized nor compiled for
+    // the walk's instruction set), and a loop that stores conditionally is
+    // not vectorized.
+    let mut zeta = [0.0; N];
+    for (i, z) in zeta.iter_mut().enumerate() {
+        *z = exp_f64_select(-0.5 * (f64::from(back[i]) + f64::from(front[i])));
+    }
+    let mut psi = [0.0; N];
+    for (i, p) in psi.iter_mut().enumerate() {
+        let (a, b) = (f64::from(back[i]), f64::from(front[i]));
+        *p = psi_near_constant(b, 0.5 * (a - b), zeta[i]);
+    }
+    let mut weights = [Weights {
+        zeta: 1.0,
+        psi: 1.0,
+    }; N];
+    for (i, w) in weights.iter_mut().enumerate() {
+        let (a, b) = (f64::from(back[i]), f64::from(front[i]));
+        if near_constant(a, b).is_some() {
+            *w = Weights {
+                zeta: zeta[i] as f32,
+                psi: psi[i] as f32,
+            };
+        } else if live >> i & 1 != 0 {
+            *w = exact_weights(back[i], front[i]);
+        }
+    }
+    weights
 }
 
 /// The terms `(-1)^j / (j! (j + 7))` of `M_6(b) = sum_j t_j b^j`, `j <= 10`.
@@ -180,20 +231,20 @@ const M6_TERMS: [f64; 11] = moment_terms(6);
 /// omitted term is at most `c^4 / 24 M_8 < 4.2e-14 M_8`, with `M_8 <= M_0`
 /// (the weight `x^8` is at most 1). No f32 weight moves by more than one
 /// rounding step.
+#[inline(always)]
 fn psi_near_constant(b: f64, c: f64, zeta: f64) -> f64 {
     // exp(-b) = zeta exp(c), exp(c) to its c^4 term (c^5 / 120 < 1e-17).
     let e = zeta * (1.0 + c * (1.0 + c * (0.5 + c * (1.0 / 6.0 + c * (1.0 / 24.0)))));
-    let [m0, m2, m4, m6] = if b <= 0.5 {
-        // M_6 by its series, then the backward recurrence, which damps
-        // errors.
-        let m6 = M6_TERMS.iter().rev().fold(0.0, |sum, &t| sum * b + t);
-        moments_down(m6, b, e)
-    } else {
-        // The forward recurrence multiplies rounding by at most k! / b^k
-        // in M_k (8 in M_2, 46080 in M_6 at b = 1/2), and Psi takes M_k
-        // times |c|^(k/2) / (k/2)! (1.7e-10 for M_6).
-        moments_up(b, e)
-    };
+    // Both recurrences run and one is taken, so that lanes of these
+    // vectorize (see `exact_weights_lanes`). Up to b = 1/2: M_6 by its
+    // series, then the backward recurrence, which damps errors. Above:
+    // the forward recurrence, which multiplies rounding by at most
+    // k! / b^k in M_k (8 in M_2, 46080 in M_6 at b = 1/2), and Psi takes
+    // M_k times |c|^(k/2) / (k/2)! (1.7e-10 for M_6).
+    let m6 = M6_TERMS.iter().rev().fold(0.0, |sum, &t| sum * b + t);
+    let down: [f64; 4] = moments_down(m6, b, e);
+    let up: [f64; 4] = moments_up(b, e);
+    let [m0, m2, m4, m6] = std::array::from_fn(|k| if b <= 0.5 { down[k] } else { up[k] });
     m0 - c * (m2 - c * (0.5 * m4 - c * (1.0 / 6.0) * m6))
 }
 
@@ -299,6 +350,50 @@ mod tests {
         // Only a value within 2e-14 of an f32 rounding boundary can differ
         // (none on this grid).
         assert!(f32_steps < 5, "{f32_steps} f32 weights differ");
+    }
+
+    /// The lanes give each live lane the bits of [`exact_weights`], over
+    /// nearly constant and other segments, both moment recurrences, the
+    /// exponential's zero, and NaN, infinite and negative values; a lane
+    /// that is not live gives ones unless it is nearly constant.
+    #[test]
+    fn lanes_have_the_bits_of_one_segment_at_a_time() {
+        let specials = [0.0, 1e-30, 0.3, 0.5, 0.500_5, 2.0, 1500.0, 1e30];
+        let odd = [f32::NAN, f32::INFINITY, -1.0, -1e-4];
+        let mut values: Vec<f32> = specials.to_vec();
+        values.extend(odd);
+        let mut state = 0x9e37_79b9u32;
+        for _ in 0..4000 {
+            state ^= state << 13;
+            state ^= state >> 17;
+            state ^= state << 5;
+            let base = (state >> 8) as f32 / (1u32 << 24) as f32 * 8.0;
+            let offset = ((state & 0xff) as f32 / 255.0 - 0.5) * 0.004;
+            values.push(base);
+            values.push(base + offset);
+        }
+        let mut near = 0;
+        for chunk in values.chunks_exact(32) {
+            let back: [f32; 16] = std::array::from_fn(|i| chunk[2 * i]);
+            let front: [f32; 16] = std::array::from_fn(|i| chunk[2 * i + 1]);
+            for live in [u32::MAX, 0x5555, 0] {
+                let lanes = exact_weights_lanes(&back, &front, live);
+                for i in 0..16 {
+                    let one = exact_weights(back[i], front[i]);
+                    let is_near = near_constant(back[i].into(), front[i].into()).is_some();
+                    near += usize::from(is_near);
+                    let want = if live >> i & 1 != 0 || is_near {
+                        (one.zeta.to_bits(), one.psi.to_bits())
+                    } else {
+                        (1f32.to_bits(), 1f32.to_bits())
+                    };
+                    let got = (lanes[i].zeta.to_bits(), lanes[i].psi.to_bits());
+                    let both_nan = lanes[i].psi.is_nan() && one.psi.is_nan();
+                    assert!(got == want || both_nan, "({}, {})", back[i], front[i]);
+                }
+            }
+        }
+        assert!(near > 3000, "only {near} nearly constant lanes");
     }
 
     #[test]

@@ -11,7 +11,7 @@
 use glam::{Vec3A, Vec4};
 
 use crate::average::{average_opacity_weights, average_weights, average_weights_lanes};
-use crate::exact::exact_weights;
+use crate::exact::{exact_weights, exact_weights_lanes};
 use crate::grey::{GreyKnots, GreySample};
 use crate::knots::{KnotSample, Material, TfKnots};
 use crate::opacity::{lin_avg_opacity_weights, lin_opacity_weights};
@@ -106,6 +106,16 @@ impl WeightKernel for Exact {
     #[inline(always)]
     fn weights(&self, a: f32, b: f32, _length: f32) -> Weights {
         exact_weights(a, b)
+    }
+    #[inline(always)]
+    fn weights_lanes<const N: usize>(
+        &self,
+        back: &[f32; N],
+        front: &[f32; N],
+        _length: &[f32; N],
+        live: u32,
+    ) -> [Weights; N] {
+        exact_weights_lanes(back, front, live)
     }
 }
 
