@@ -62,8 +62,8 @@ fn exp_in_range(x: f32) -> f32 {
 /// `2^-90`, `LN2_HI_F64` with its low 21 bits zero so that `k * LN2_HI_F64`
 /// is exact for `|k| < 2^11`.
 const LOG2_E_F64: f64 = std::f64::consts::LOG2_E;
-const LN2_HI_F64: f64 = 6.931_471_803_691_238_2e-1;
-const LN2_LO_F64: f64 = 1.908_214_929_270_587_7e-10;
+const LN2_HI_F64: f64 = 0.6931471803691238;
+const LN2_LO_F64: f64 = 1.9082149292705877e-10;
 /// `1.5 * 2^52`: adding and subtracting it rounds to the nearest integer.
 const ROUNDER_F64: f64 = 6_755_399_441_055_744.0;
 /// `1 / n!` for `n = 0..=13`.

@@ -42,7 +42,8 @@ impl<const D: usize, const N: usize> Piecewise<D, N> {
                     t[1] = u;
                 }
                 for j in 2..D {
-                    t[j] = 2.0 * u * t[j - 1] - t[j - 2];
+                    let (older, previous) = (t[j - 2], t[j - 1]);
+                    t[j] = 2.0 * u * previous - older;
                 }
                 t
             })
@@ -142,10 +143,10 @@ mod tests {
         // T_5(u) = 16 u^5 - 20 u^3 + 5 u.
         assert_eq!(t[5], [0.0, 5.0, 0.0, -20.0, 0.0, 16.0]);
         // T_j(cos theta) = cos(j theta).
-        for j in 0..6 {
+        for (j, t_j) in t.iter().enumerate() {
             let theta: f64 = 0.7;
             let u = theta.cos();
-            let value: f64 = t[j].iter().rev().fold(0.0, |s, &c| s * u + c);
+            let value: f64 = t_j.iter().rev().fold(0.0, |s, &c| s * u + c);
             assert!((value - (j as f64 * theta).cos()).abs() < 1e-14);
         }
     }
