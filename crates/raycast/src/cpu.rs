@@ -504,13 +504,16 @@ impl<I: SegmentIntegrator + ?Sized> Frame<'_, I> {
         // Each round takes every ray one step, stage by stage: exits (or
         // BVH entries), then classification, then the integration of all
         // the segments at once, then compositing. `live` has a bit per ray.
+        // A ray's compositing and its next step's exit are one pass over
+        // the rays (the same order of stages for every ray, one loop fewer
+        // per round).
         const { assert!(N <= 32) };
         let mut batch = [SampledSegment::default(); N];
         let mut lights = [SegmentLight::CLEAR; N];
+        for (walker, _) in &mut slots {
+            walker.begin::<PREFETCH, _>(self.scene, self.integrator, self.limits);
+        }
         while active > 0 {
-            for (walker, _) in &mut slots {
-                walker.begin::<PREFETCH, _>(self.scene, self.integrator, self.limits);
-            }
             let mut live = 0;
             for (i, (walker, _)) in slots.iter_mut().enumerate() {
                 let integrate = walker.classify(self.integrator, &mut batch[i]);
@@ -520,21 +523,21 @@ impl<I: SegmentIntegrator + ?Sized> Frame<'_, I> {
             for (i, (walker, index)) in slots.iter_mut().enumerate() {
                 let light =
                     (live >> i & 1 != 0).then(|| (lights[i].emitted, lights[i].transmittance));
-                if walker.end(light, self.limits) || *index == usize::MAX {
-                    continue;
-                }
-                stats.add(&walker.counters);
-                finish(walker, *index);
-                match pixels.next() {
-                    Some((x, dy)) => {
-                        start(walker, x, dy);
-                        *index = dy * self.width + x;
+                if !walker.end(light, self.limits) && *index != usize::MAX {
+                    stats.add(&walker.counters);
+                    finish(walker, *index);
+                    match pixels.next() {
+                        Some((x, dy)) => {
+                            start(walker, x, dy);
+                            *index = dy * self.width + x;
+                        }
+                        None => {
+                            *index = usize::MAX;
+                            active -= 1;
+                        }
                     }
-                    None => {
-                        *index = usize::MAX;
-                        active -= 1;
-                    }
                 }
+                walker.begin::<PREFETCH, _>(self.scene, self.integrator, self.limits);
             }
         }
         if let Some(progress) = self.progress {
