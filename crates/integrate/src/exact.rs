@@ -37,8 +37,15 @@ pub fn exact_zeta_psi(a: f64, b: f64) -> (f64, f64) {
         return (0.0, 0.0);
     }
     let zeta = exp_f64_select(-0.5 * (a + b));
+    (zeta, psi_given_zeta(a, b, zeta))
+}
+
+/// Psi for finite `a, b >= 0` and `zeta = exp(-(a + b)/2)`: the series in
+/// `c` or one of the two closed forms.
+#[inline]
+fn psi_given_zeta(a: f64, b: f64, zeta: f64) -> f64 {
     let c = 0.5 * (a - b);
-    let psi = if c.abs() < SERIES_BELOW {
+    if c.abs() < SERIES_BELOW {
         psi_series(b, c, zeta)
     } else if c > 0.0 {
         let k = c.sqrt();
@@ -46,8 +53,7 @@ pub fn exact_zeta_psi(a: f64, b: f64) -> (f64, f64) {
     } else {
         let k = (-c).sqrt();
         (dawson(b / (2.0 * k)) - zeta * dawson(a / (2.0 * k))) / k
-    };
-    (zeta, psi)
+    }
 }
 
 /// Psi for small `|c|`: `sum_{n=0}^{4} (-c)^n / n! M_2n(b)`, given
@@ -182,7 +188,8 @@ fn near_constant(a: f64, b: f64) -> Option<f64> {
 /// segments, nearly all of them on a fine mesh, are computed for every
 /// lane as vector arithmetic (the exponential and both of
 /// [`psi_near_constant`]'s moment recurrences run without a branch); the
-/// other live lanes are computed alone.
+/// other live lanes take the closed forms alone, with their lane's
+/// exponential.
 #[inline(always)]
 pub fn exact_weights_lanes<const N: usize>(
     back: &[f32; N],
@@ -214,7 +221,15 @@ pub fn exact_weights_lanes<const N: usize>(
                 psi: psi[i] as f32,
             };
         } else if live >> i & 1 != 0 {
-            *w = exact_weights(back[i], front[i]);
+            // `exact_zeta_psi`'s own steps, with the lane's exponential.
+            *w = if a.is_finite() && b.is_finite() && a >= 0.0 && b >= 0.0 {
+                Weights {
+                    zeta: zeta[i] as f32,
+                    psi: psi_given_zeta(a, b, zeta[i]) as f32,
+                }
+            } else {
+                exact_weights(back[i], front[i])
+            };
         }
     }
     weights
@@ -368,11 +383,13 @@ mod tests {
             state ^= state >> 17;
             state ^= state << 5;
             let base = (state >> 8) as f32 / (1u32 << 24) as f32 * 8.0;
-            let offset = ((state & 0xff) as f32 / 255.0 - 0.5) * 0.004;
+            // Nearly constant (|c| up to 2e-3) or not (up to 2).
+            let spread = if state & 0x100 == 0 { 0.004 } else { 4.0 };
+            let offset = ((state & 0xff) as f32 / 255.0 - 0.5) * spread;
             values.push(base);
             values.push(base + offset);
         }
-        let mut near = 0;
+        let (mut near, mut general) = (0, 0);
         for chunk in values.chunks_exact(32) {
             let back: [f32; 16] = std::array::from_fn(|i| chunk[2 * i]);
             let front: [f32; 16] = std::array::from_fn(|i| chunk[2 * i + 1]);
@@ -382,6 +399,7 @@ mod tests {
                     let one = exact_weights(back[i], front[i]);
                     let is_near = near_constant(back[i].into(), front[i].into()).is_some();
                     near += usize::from(is_near);
+                    general += usize::from(!is_near && back[i] >= 0.0 && front[i] >= 0.0);
                     let want = if live >> i & 1 != 0 || is_near {
                         (one.zeta.to_bits(), one.psi.to_bits())
                     } else {
@@ -394,6 +412,7 @@ mod tests {
             }
         }
         assert!(near > 3000, "only {near} nearly constant lanes");
+        assert!(general > 3000, "only {general} lanes in the closed forms");
     }
 
     #[test]

@@ -95,10 +95,8 @@ pub fn exp_f64_select(x: f64) -> f64 {
     let kf = rounded - ROUNDER_F64;
     let r = (x - kf * LN2_HI_F64) - kf * LN2_LO_F64;
     // Taylor to r^13: truncation below 5e-18 relative for |r| <= 0.347.
-    let p = INVERSE_FACTORIALS
-        .iter()
-        .rev()
-        .fold(0.0, |sum, &term| sum * r + term);
+    let [rest @ .., last] = INVERSE_FACTORIALS;
+    let p = rest.iter().rev().fold(last, |sum, &term| sum * r + term);
     // 2^k from the exponent bits (k in [-1022, 1023] here), `k` from the
     // low bits of the rounded sum.
     let k = rounded.to_bits().wrapping_sub(ROUNDER_F64.to_bits());
