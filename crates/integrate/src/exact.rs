@@ -187,7 +187,7 @@ fn near_constant(a: f64, b: f64) -> Option<f64> {
 /// `i` of `live` is set (anything elsewhere). The nearly constant
 /// segments, nearly all of them on a fine mesh, are computed for every
 /// lane as vector arithmetic (the exponential and both of
-/// [`psi_near_constant`]'s moment recurrences run without a branch); the
+/// `psi_near_constant`'s moment recurrences run without a branch); the
 /// other live lanes take the closed forms alone, with their lane's
 /// exponential.
 #[inline(always)]

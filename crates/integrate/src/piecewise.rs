@@ -1,9 +1,9 @@
 //! Piecewise polynomials fitted once to an accurate but slow function:
 //! on each of `N` equal intervals, the function's Chebyshev series cut
 //! after `D` terms (near-minimax: its error is within a small factor of
-//! the best polynomial's), stored in monomial form in the interval's own variable
-//! `u` in `[-1, 1]` so that an evaluation is one Horner sum of `D - 1`
-//! multiply-adds.
+//! the best polynomial's), stored in monomial form in the interval's own
+//! variable `u` in `[-1, 1]`, so that an evaluation is one Horner sum of
+//! `D - 1` multiply-adds.
 
 use std::f64::consts::PI;
 

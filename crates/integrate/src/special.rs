@@ -13,8 +13,8 @@
 //! calls ([`erfcx`], [`dawson`]) are piecewise polynomials fitted once to
 //! the reference forms on `[0, 12)` (intervals of width 1/4, degree 12),
 //! a short Maclaurin sum for Dawson's integral below 1/4 and the asymptotic
-//! series from 12 on: a Horner sum each, within a few units in the last
-//! place of the reference forms.
+//! series from 12 on: a Horner sum each, within 6e-16 relative of the true
+//! values (the reference forms: within 7e-16; see the tests).
 
 use std::f64::consts::PI;
 use std::sync::OnceLock;
@@ -46,7 +46,7 @@ fn fits() -> &'static (Fit, Fit) {
     })
 }
 
-/// `(2k - 1)!!` for `k = 0..N`, with alternating signs if `ALTERNATE`:
+/// `(2k - 1)!!` for `k = 0..N`, with alternating signs if `alternate`:
 /// the coefficients of the asymptotic series in `1 / (2 x^2)`.
 const fn double_factorials<const N: usize>(alternate: bool) -> [f64; N] {
     let mut terms = [0.0; N];
@@ -73,8 +73,8 @@ fn horner(terms: &[f64], v: f64) -> f64 {
     terms.iter().rev().fold(0.0, |sum, &t| sum * v + t)
 }
 
-/// `exp(x^2) erfc(x)`, to within a few units in the last place of
-/// [`erfcx_reference`] for `x >= 0`; negative `x` takes the reference form.
+/// `exp(x^2) erfc(x)`, within 6e-16 relative for `x >= 0`; negative `x`
+/// takes [`erfcx_reference`].
 #[inline]
 pub fn erfcx(x: f64) -> f64 {
     const ASYMPTOTIC: [f64; 13] = double_factorials(true);
@@ -88,8 +88,7 @@ pub fn erfcx(x: f64) -> f64 {
     }
 }
 
-/// Dawson's integral, odd in `x`, to within a few units in the last place
-/// of [`dawson_reference`].
+/// Dawson's integral, odd in `x`, within 6e-16 relative.
 #[inline]
 pub fn dawson(x: f64) -> f64 {
     const ASYMPTOTIC: [f64; 13] = double_factorials(false);
