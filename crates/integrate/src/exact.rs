@@ -16,7 +16,7 @@
 //!   `M_k(b) = int_0^1 x^k exp(-b x) dx`; at `a = b = 0` this gives
 //!   `Psi = 1`, `I = I_0` (the `tau D -> 0` limit).
 
-use crate::fastmath::exp_f64_select;
+use crate::fastmath::{exp_f64_select, horner};
 use crate::segment::{SegmentLight, SegmentParams, Weights, light_from_weights};
 use crate::special::{dawson, erfcx};
 
@@ -30,14 +30,24 @@ const SQRT_PI_2: f64 = 0.886_226_925_452_758;
 
 /// `(zeta, Psi)` in f64 for `a = tau_b D >= 0`, `b = tau_f D >= 0`.
 pub fn exact_zeta_psi(a: f64, b: f64) -> (f64, f64) {
+    out_of_domain(a, b).unwrap_or_else(|| {
+        let zeta = exp_f64_select(-0.5 * (a + b));
+        (zeta, psi_given_zeta(a, b, zeta))
+    })
+}
+
+/// [`exact_zeta_psi`] where `a` or `b` is not a finite non-negative
+/// number: NaN for a NaN or a negative value, `(0, 0)` (nothing passes)
+/// for an infinity; `None` where the closed forms apply.
+#[inline(always)]
+fn out_of_domain(a: f64, b: f64) -> Option<(f64, f64)> {
     if a.is_nan() || b.is_nan() || a < 0.0 || b < 0.0 {
-        return (f64::NAN, f64::NAN);
+        Some((f64::NAN, f64::NAN))
+    } else if a.is_infinite() || b.is_infinite() {
+        Some((0.0, 0.0))
+    } else {
+        None
     }
-    if a.is_infinite() || b.is_infinite() {
-        return (0.0, 0.0);
-    }
-    let zeta = exp_f64_select(-0.5 * (a + b));
-    (zeta, psi_given_zeta(a, b, zeta))
 }
 
 /// Psi for finite `a, b >= 0` and `zeta = exp(-(a + b)/2)`: the series in
@@ -143,7 +153,7 @@ fn even_moments(b: f64, c: f64, zeta: f64) -> [f64; 5] {
         // by at most 2^8 / 8! overall.
         let b2 = b * b;
         let b4 = b2 * b2;
-        let q = M8_CHAINS.map(|chain| chain.iter().rev().fold(0.0, |sum, &t| sum * b4 + t));
+        let q = M8_CHAINS.map(|chain| horner(&chain, b4));
         let m8 = (q[0] + b * q[1]) + b2 * (q[2] + b * q[3]);
         moments_down(m8, b, e)
     } else {
@@ -222,7 +232,7 @@ pub fn exact_weights_lanes<const N: usize>(
             };
         } else if live >> i & 1 != 0 {
             // `exact_zeta_psi`'s own steps, with the lane's exponential.
-            *w = if a.is_finite() && b.is_finite() && a >= 0.0 && b >= 0.0 {
+            *w = if out_of_domain(a, b).is_none() {
                 Weights {
                     zeta: zeta[i] as f32,
                     psi: psi_given_zeta(a, b, zeta[i]) as f32,
@@ -256,7 +266,7 @@ fn psi_near_constant(b: f64, c: f64, zeta: f64) -> f64 {
     // the forward recurrence, which multiplies rounding by at most
     // k! / b^k in M_k (8 in M_2, 46080 in M_6 at b = 1/2), and Psi takes
     // M_k times |c|^(k/2) / (k/2)! (1.7e-10 for M_6).
-    let m6 = M6_TERMS.iter().rev().fold(0.0, |sum, &t| sum * b + t);
+    let m6 = horner(&M6_TERMS, b);
     let down: [f64; 4] = moments_down(m6, b, e);
     let up: [f64; 4] = moments_up(b, e);
     let [m0, m2, m4, m6] = std::array::from_fn(|k| if b <= 0.5 { down[k] } else { up[k] });

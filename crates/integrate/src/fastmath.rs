@@ -95,13 +95,24 @@ pub fn exp_f64_select(x: f64) -> f64 {
     let kf = rounded - ROUNDER_F64;
     let r = (x - kf * LN2_HI_F64) - kf * LN2_LO_F64;
     // Taylor to r^13: truncation below 5e-18 relative for |r| <= 0.347.
-    let [rest @ .., last] = INVERSE_FACTORIALS;
-    let p = rest.iter().rev().fold(last, |sum, &term| sum * r + term);
+    let p = horner(&INVERSE_FACTORIALS, r);
     // 2^k from the exponent bits (k in [-1022, 1023] here), `k` from the
     // low bits of the rounded sum.
     let k = rounded.to_bits().wrapping_sub(ROUNDER_F64.to_bits());
     let v = p * f64::from_bits(k.wrapping_add(1023) << 52);
     if x < -708.0 { 0.0 } else { v }
+}
+
+/// `sum_k terms[k] v^k` by Horner's rule from the last term, in separate
+/// multiplications and additions: the same bits with or without fused
+/// multiply-add hardware (without it, `mul_add` is a library call several
+/// times slower). Zero for no terms.
+#[inline(always)]
+pub fn horner(terms: &[f64], v: f64) -> f64 {
+    match terms.split_last() {
+        Some((&last, rest)) => rest.iter().rev().fold(last, |sum, &t| sum * v + t),
+        None => 0.0,
+    }
 }
 
 /// `f` of the lanes of `a` and `b`, four at a time in a `Vec4` (SSE or

@@ -7,6 +7,8 @@
 
 use std::f64::consts::PI;
 
+use crate::fastmath::horner;
+
 /// `f` on `[start, start + N / per_unit)` as `N` polynomials of degree
 /// `D - 1`.
 pub struct Piecewise<const D: usize, const N: usize> {
@@ -101,18 +103,6 @@ impl<const D: usize, const N: usize> Piecewise<D, N> {
         let u = 2.0 * (t - i as f64) - 1.0;
         horner(&self.coefficients[i], u)
     }
-}
-
-/// `sum_k c[k] u^k` by Horner's rule, in separate multiplications and
-/// additions: the same bits with or without fused multiply-add hardware
-/// (without it, `mul_add` is a library call several times slower).
-#[inline(always)]
-fn horner<const D: usize>(c: &[f64; D], u: f64) -> f64 {
-    let mut sum = c[D - 1];
-    for &coefficient in c[..D - 1].iter().rev() {
-        sum = sum * u + coefficient;
-    }
-    sum
 }
 
 /// The monomial coefficients of the Chebyshev polynomials `T_0` to

@@ -19,6 +19,7 @@
 use std::f64::consts::PI;
 use std::sync::OnceLock;
 
+use crate::fastmath::horner;
 use crate::piecewise::Piecewise;
 
 /// `1 / sqrt(pi)`.
@@ -64,13 +65,6 @@ const fn double_factorials<const N: usize>(alternate: bool) -> [f64; N] {
         k += 1;
     }
     terms
-}
-
-/// `sum_k terms[k] v^k` by Horner's rule (separate multiplications and
-/// additions, as in [`Piecewise::eval`]).
-#[inline(always)]
-fn horner(terms: &[f64], v: f64) -> f64 {
-    terms.iter().rev().fold(0.0, |sum, &t| sum * v + t)
 }
 
 /// `exp(x^2) erfc(x)`, within 6e-16 relative for `x >= 0`; negative `x`
