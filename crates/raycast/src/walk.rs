@@ -12,7 +12,7 @@ use tetray_integrate::{SampledSegment, SegmentLight};
 use crate::entries::EntryList;
 use crate::face::{Face, Vertex};
 use crate::holes::Holes;
-use tetray_scene::{FINAL_EXIT, Scene};
+use tetray_scene::{FINAL_EXIT, Scene, WalkTet};
 
 /// The light of one ray segment, front (nearer the eye) to back.
 ///
@@ -417,6 +417,24 @@ impl<S: Copy + Default> Walker<S> {
         // leaves out, whose rank among the cell's four names the neighbour.
         self.crossing = record.next[rank & 3];
         self.phase = Phase::Crossing;
+    }
+
+    /// Starts loading the point the ray's next step projects first: the
+    /// apex of the cell across the exit face, whose record the exit
+    /// prefetched one stage earlier. Called between [`Walker::begin`] and
+    /// [`Walker::end`] when many rays are in flight, so that the point
+    /// arrives while the other rays integrate, instead of being a second
+    /// miss in the chain of the next step (record, then point). Costs a
+    /// few instructions; a ray not crossing prefetches some point of the
+    /// mesh (a stale crossing), which is harmless, and one leaving the
+    /// mesh (a boundary marker past the records) none.
+    #[inline(always)]
+    pub fn prefetch_next_apex(&self, records: &[WalkTet], points: &[[f32; 4]]) {
+        if let Some(record) = records.get(self.crossing as usize)
+            && let Some(apex) = points.get(self.face.opposite(record.vert_xor) as usize)
+        {
+            tetray_memory::prefetch(apex);
+        }
     }
 
     /// The second stage of [`Walker::advance`]: classifies the scalar at

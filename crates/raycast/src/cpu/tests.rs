@@ -58,7 +58,7 @@ pub(crate) fn holed_box_views() -> (Scene, [Camera; 3]) {
 }
 
 /// The large-mesh walk (the records of the cells a ray may enter next
-/// prefetched), the x86-64-v3 build of either, and each with its
+/// prefetched, and the new vertex of the cell it enters), the x86-64-v3 build of either, and each with its
 /// entries from per-pixel lists instead of the BVH, give the
 /// small-mesh walk's image and counters bit for bit, on a mesh with a
 /// hole (re-entries) from outside and from inside (perspective, and
