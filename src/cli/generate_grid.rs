@@ -137,5 +137,6 @@ mod tests {
             output,
         };
         assert!(grid(&bad).is_err());
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -9,6 +9,7 @@
 
 use std::io::{Read, Write};
 use std::net::{TcpListener, TcpStream};
+use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
@@ -25,6 +26,15 @@ pub const WEBGPU_FLAGS: [&str; 3] = [
 /// several headless Chromiums compiling the kernel on a two-core machine
 /// starve each other (and lavapipe) of time.
 static ONE_AT_A_TIME: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+/// The driver's and the browser's temp folder (`TMPDIR`): the profile
+/// chromedriver makes for each browser, and the browser's own scratch,
+/// which would otherwise outlive the test in the system temp folder. One
+/// browser runs at a time, so one folder serves them all, removed after
+/// each.
+fn scratch_dir() -> PathBuf {
+    Path::new(env!("CARGO_TARGET_TMPDIR")).join("tetray-chromium")
+}
 
 pub struct Browser {
     // Dropped last (fields drop in order): the browser and driver go first.
@@ -72,8 +82,12 @@ impl Browser {
             .and_then(|l| l.local_addr())
             .expect("a free port")
             .port();
+        let scratch = scratch_dir();
+        let _ = std::fs::remove_dir_all(&scratch);
+        std::fs::create_dir_all(&scratch).expect("the browser's temp folder");
         let child = Command::new(&driver)
             .arg(format!("--port={port}"))
+            .env("TMPDIR", &scratch)
             .stdout(Stdio::null())
             .stderr(Stdio::null())
             .spawn()
@@ -208,5 +222,6 @@ impl Drop for Browser {
         }
         let _ = self.driver.kill();
         let _ = self.driver.wait();
+        let _ = std::fs::remove_dir_all(scratch_dir());
     }
 }

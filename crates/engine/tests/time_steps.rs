@@ -39,8 +39,7 @@ fn write_step_at(path: &Path, scale: f32, stretch: f32, bad: bool, offset: f32) 
 
 /// A series of steps `(scale, stretch, bad)` in a fresh folder.
 fn series(name: &str, steps: &[(f32, f32, bool)]) -> PathBuf {
-    let dir =
-        std::env::temp_dir().join(format!("tetray-engine-steps-{name}-{}", std::process::id()));
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("tetray-engine-steps-{name}"));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).expect("scratch folder");
     let mut files = Vec::new();
@@ -173,7 +172,7 @@ fn moving_points_take_the_topology_of_the_step_before() {
 /// the first step's opacity unit distance.
 #[test]
 fn a_moving_mesh_far_away_keeps_the_view_in_file_coordinates() {
-    let dir = std::env::temp_dir().join(format!("tetray-engine-steps-far-{}", std::process::id()));
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("tetray-engine-steps-far");
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).expect("scratch folder");
     write_step_at(&dir.join("a.vtk"), 1.0, 1.0, false, 1.0e6);

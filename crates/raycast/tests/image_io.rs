@@ -6,7 +6,7 @@ use glam::Vec3;
 use tetray_core::{Image, ImageError};
 
 fn temp_path(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("tetray-raycast-test-{}", std::process::id()));
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("tetray-raycast-test");
     std::fs::create_dir_all(&dir).unwrap();
     dir.join(name)
 }

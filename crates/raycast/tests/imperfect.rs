@@ -43,7 +43,7 @@ fn data(name: &str) -> PathBuf {
 }
 
 fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("tetray-imperfect-{}", std::process::id()));
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("tetray-imperfect");
     std::fs::create_dir_all(&dir).unwrap();
     dir.join(name)
 }

@@ -256,7 +256,7 @@ fn a_malformed_preset_is_an_error_in_the_ui() {
     if !gpu_or_skip() {
         return;
     }
-    let dir = std::env::temp_dir().join(format!("tetray-viewer-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("tetray-viewer");
     std::fs::create_dir_all(&dir).expect("temp dir");
     let path = dir.join("broken.json");
     std::fs::write(&path, "[{\"Name\": \"broken\", \"RGBPoints\": [0, 1, 0").expect("write");

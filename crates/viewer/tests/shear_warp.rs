@@ -27,7 +27,7 @@ fn value(i: usize, j: usize, k: usize) -> f32 {
 /// The grid as a legacy ASCII STRUCTURED_POINTS file, loaded through the
 /// readers both as tetrahedra and as its grid (as `tetray view` does).
 fn dataset() -> tetray_engine::Setup {
-    let dir = std::env::temp_dir().join(format!("tetray-viewer-sw-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("tetray-viewer-sw");
     std::fs::create_dir_all(&dir).expect("temp dir");
     let path = dir.join("bump.vtk");
     let [nx, ny, nz] = DIMS;

@@ -28,7 +28,7 @@ fn write_step(path: &Path, scale: f32) {
 }
 
 fn series(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("tetray-viewer-{name}-{}", std::process::id()));
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("tetray-viewer-{name}"));
     std::fs::create_dir_all(&dir).expect("scratch folder");
     for k in 0..3 {
         write_step(&dir.join(format!("s{k}.vtk")), (k + 1) as f32);

@@ -141,12 +141,20 @@ fn image_grid(
 mod tests {
     use super::*;
 
-    fn write(name: &str, text: &str) -> std::path::PathBuf {
-        let dir = std::env::temp_dir().join(format!("tetray-image-grid-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let path = dir.join(name);
+    /// A file in the system temp folder, removed on drop.
+    struct Scratch(std::path::PathBuf);
+
+    impl Drop for Scratch {
+        fn drop(&mut self) {
+            let _ = std::fs::remove_file(&self.0);
+        }
+    }
+
+    fn write(name: &str, text: &str) -> Scratch {
+        let file = format!("tetray-image-grid-{}-{name}", std::process::id());
+        let path = std::env::temp_dir().join(file);
         std::fs::write(&path, text).unwrap();
-        path
+        Scratch(path)
     }
 
     #[test]
@@ -157,7 +165,7 @@ mod tests {
              DIMENSIONS 3 2 2\nORIGIN 1 2 3\nSPACING 0.5 1 2\nPOINT_DATA 12\n\
              SCALARS s float 1\nLOOKUP_TABLE default\n0 1 2 3 4 5 6 7 8 9 10 11\n",
         );
-        let g = read_image_grid(&path).unwrap();
+        let g = read_image_grid(&path.0).unwrap();
         assert_eq!(g.dims, [3, 2, 2]);
         assert_eq!(g.origin, [1.0, 2.0, 3.0]);
         assert_eq!(g.spacing, [0.5, 1.0, 2.0]);
@@ -181,7 +189,7 @@ mod tests {
 </VTKFile>
 "#,
         );
-        let g = read_image_grid(&path).unwrap();
+        let g = read_image_grid(&path.0).unwrap();
         assert_eq!(g.dims, [2, 2, 2]);
         assert_eq!(g.origin, [2.0, 0.0, 0.0]);
         assert_eq!(g.fields[0].values.len(), 8);
@@ -195,7 +203,7 @@ mod tests {
              DIMENSIONS 2 2 2\nX_COORDINATES 2 float\n0 1\nY_COORDINATES 2 float\n0 1\n\
              Z_COORDINATES 2 float\n0 3\n",
         );
-        let err = read_image_grid(&path).unwrap_err().to_string();
+        let err = read_image_grid(&path.0).unwrap_err().to_string();
         assert!(err.contains("single-piece ImageData"), "{err}");
     }
 }
