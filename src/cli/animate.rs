@@ -13,7 +13,8 @@ use clap::Args;
 use glam::Vec3;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
-use super::args::{FrameFlags, WalkArgs, parse_finite, parse_rgb, parse_size};
+use super::args::{FrameFlags, WalkArgs};
+use super::parse::{parse_finite, parse_rgb, parse_size};
 use super::scene;
 use tetray_core::Movie;
 use tetray_engine::{Engine, StepCost, TimeSteps};

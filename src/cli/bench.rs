@@ -1,6 +1,7 @@
 //! `tetray bench`: frame times over an orbit of the camera, as JSON.
 
-use super::args::{FrameFlags, WalkArgs, parse_finite, parse_size};
+use super::args::{FrameFlags, WalkArgs};
+use super::parse::{parse_finite, parse_size};
 use super::{render, scene};
 use clap::Args;
 use serde::Serialize;

@@ -10,7 +10,8 @@ use glam::Vec3;
 use tetray_boundary_bvh::BuildPreset;
 use tetray_project::SortKind;
 
-use super::args::{FrameFlags, RendererArg, WalkArgs, parse_bvh_preset, parse_rgb, parse_size};
+use super::args::{FrameFlags, RendererArg, WalkArgs};
+use super::parse::{parse_bvh_preset, parse_rgb, parse_size};
 use super::scene;
 
 #[derive(Debug, Clone, Args)]

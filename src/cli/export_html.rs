@@ -9,7 +9,8 @@ use glam::Vec3;
 use tetray_boundary_bvh::BuildPreset;
 use tetray_web::{Layout, Limits, PageOptions};
 
-use super::args::{FrameFlags, WalkArgs, parse_bvh_preset, parse_rgb, parse_size};
+use super::args::{FrameFlags, WalkArgs};
+use super::parse::{parse_bvh_preset, parse_rgb, parse_size};
 use super::scene;
 
 /// `tetray export-html`.

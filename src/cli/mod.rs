@@ -11,6 +11,7 @@ mod export_html;
 mod generate;
 mod generate_grid;
 mod info;
+mod parse;
 mod psi;
 mod render;
 mod scene;

@@ -5,7 +5,7 @@ use clap::Args;
 use serde::Serialize;
 use tetray_integrate::PsiTable;
 
-use super::args::parse_unit_interval;
+use super::parse::parse_unit_interval;
 
 /// `tetray psi`.
 #[derive(Debug, Clone, Args)]

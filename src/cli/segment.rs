@@ -6,7 +6,7 @@ use glam::Vec3;
 use serde::Serialize;
 use tetray_integrate::{Method, Model, SegmentParams};
 
-use super::args::{parse_method, parse_non_negative, parse_positive, parse_rgb};
+use super::parse::{parse_method, parse_non_negative, parse_positive, parse_rgb};
 
 /// A method, or all of them.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

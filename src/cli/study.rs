@@ -14,7 +14,7 @@ use tetray_study::smoothness::{self, SmoothnessOptions};
 use tetray_study::speed::{self, SpeedOptions};
 use tetray_study::{Check, OutputDir};
 
-use super::args::{parse_method, parse_size};
+use super::parse::{parse_method, parse_size};
 
 /// Which study.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]

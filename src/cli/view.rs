@@ -6,7 +6,8 @@ use std::time::Duration;
 use clap::Args;
 use tetray_viewer::{TimeSeries, ViewerOptions};
 
-use super::args::{IntegratorArgs, MeshArgs, parse_positive};
+use super::args::{IntegratorArgs, MeshArgs};
+use super::parse::parse_positive;
 use super::scene::{prepare_with, read_tf};
 
 /// `tetray view`.
