@@ -300,15 +300,23 @@ impl<W: WeightKernel> SegmentKernel for Grey<'_, W> {
         for (i, light) in lights.iter_mut().enumerate() {
             *light = weights[i].light(batch[i].back.lum(), batch[i].front.lum());
         }
-        for (i, (light, s)) in lights.iter_mut().zip(batch).enumerate() {
-            let one_piece = self.one_piece(&s.front, &s.back);
-            if live >> i & 1 != 0 && !(one_piece && carries_material(s.length)) {
-                *light = if carries_material(s.length) {
-                    self.segment(knots, &s.front, &s.back, s.length)
-                } else {
-                    SegmentLight::CLEAR
-                };
-            }
+        // The lanes to redo, found without branches (a plain loop of
+        // compares the compiler unrolls), then redone one by one.
+        let mut redo = 0u32;
+        for (i, s) in batch.iter().enumerate() {
+            let whole = self.one_piece(&s.front, &s.back) & carries_material(s.length);
+            redo |= u32::from(!whole) << i;
+        }
+        redo &= live;
+        while redo != 0 {
+            let i = redo.trailing_zeros() as usize;
+            redo &= redo - 1;
+            let s = &batch[i];
+            lights[i] = if carries_material(s.length) {
+                self.segment(knots, &s.front, &s.back, s.length)
+            } else {
+                SegmentLight::CLEAR
+            };
         }
     }
 }
