@@ -58,11 +58,11 @@ pub(crate) fn holed_box_views() -> (Scene, [Camera; 3]) {
 }
 
 /// The large-mesh walk (the records of the cells a ray may enter next
-/// prefetched, and the new vertex of the cell it enters), the x86-64-v3 build of either, and each with its
-/// entries from per-pixel lists instead of the BVH, give the
-/// small-mesh walk's image and counters bit for bit, on a mesh with a
-/// hole (re-entries) from outside and from inside (perspective, and
-/// orthographic with the view plane through the mesh).
+/// prefetched, and the new vertex of the cell it enters), the x86-64-v3
+/// build of either, and each with its entries from per-pixel lists instead
+/// of the BVH, give the small-mesh walk's image and counters bit for bit,
+/// on a mesh with a hole (re-entries) from outside and from inside
+/// (perspective, and orthographic with the view plane through the mesh).
 #[test]
 fn prefetching_walk_gives_the_same_bits() {
     let (scene, [outside, inside, through]) = holed_box_views();
