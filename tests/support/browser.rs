@@ -9,7 +9,7 @@
 
 use std::io::{Read, Write};
 use std::net::{TcpListener, TcpStream};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
@@ -30,10 +30,12 @@ static ONE_AT_A_TIME: std::sync::Mutex<()> = std::sync::Mutex::new(());
 /// The driver's and the browser's temp folder (`TMPDIR`): the profile
 /// chromedriver makes for each browser, and the browser's own scratch,
 /// which would otherwise outlive the test in the system temp folder. One
-/// browser runs at a time, so one folder serves them all, removed after
-/// each.
+/// browser runs at a time, so one folder per test process serves them all,
+/// removed after each. It stays in the system temp folder, whose path is
+/// short: the browser binds a Unix socket in it, and such a path may not
+/// exceed 107 bytes (a target folder deep in a checkout could).
 fn scratch_dir() -> PathBuf {
-    Path::new(env!("CARGO_TARGET_TMPDIR")).join("tetray-chromium")
+    std::env::temp_dir().join(format!("tetray-chromium-{}", std::process::id()))
 }
 
 pub struct Browser {
