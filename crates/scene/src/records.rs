@@ -32,7 +32,9 @@ pub struct WalkTet {
 /// The rank of point index `id` among a tetrahedron's four (`verts`, all
 /// different, `id` one of them): how many are smaller. It is the slot of
 /// [`WalkTet::next`] across the face opposite `id`. One compare of the
-/// four lanes: the walk ranks with it at every step.
+/// four lanes: the walk ranks with it at every step. A scene's point
+/// indices are below 2^31 (`SceneError::TooManyPoints`), where the signed
+/// compare orders them.
 #[inline(always)]
 pub fn vertex_rank(verts: [u32; 4], id: u32) -> usize {
     tetray_wide::lanes::count_below(verts, id) as usize

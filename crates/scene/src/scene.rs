@@ -39,6 +39,8 @@ pub enum SceneError {
     TopologyMismatch { topology: usize, mesh: usize },
     #[error("the mesh has {0} tetrahedra; the walk indexes at most 2^30 - 1")]
     TooManyTets(usize),
+    #[error("the mesh has {0} points; the walk indexes at most 2^31")]
+    TooManyPoints(usize),
     #[error(
         "face {face} of tetrahedron {tet} has neighbour {neighbor}, which does not share its three points"
     )]
@@ -122,6 +124,10 @@ impl Scene {
         }
         if mesh.tets.len() >= 1 << 30 {
             return Err(SceneError::TooManyTets(mesh.tets.len()));
+        }
+        // Point indices below 2^31 rank with one signed compare.
+        if mesh.points.len() > 1 << 31 {
+            return Err(SceneError::TooManyPoints(mesh.points.len()));
         }
         if topology.neighbors.len() != mesh.tets.len() {
             return Err(SceneError::TopologyMismatch {
