@@ -210,9 +210,17 @@ impl Projector {
     /// 0 to 2 (lane 3 is not used).
     #[inline(always)]
     pub fn project(&self, p: Vec4) -> Vec4 {
+        self.project_keep_w(p).0
+    }
+
+    /// [`Projector::project`], and `p.w` unchanged (the origin's lane 3
+    /// is zero): a point and its scalar from one load of all four lanes.
+    #[inline(always)]
+    pub fn project_keep_w(&self, p: Vec4) -> (Vec4, f32) {
         let d = p - self.origin;
-        self.columns[0] * Vec4::splat(d.x)
+        let projected = self.columns[0] * Vec4::splat(d.x)
             + self.columns[1] * Vec4::splat(d.y)
-            + self.columns[2] * Vec4::splat(d.z)
+            + self.columns[2] * Vec4::splat(d.z);
+        (projected, d.w)
     }
 }

@@ -29,13 +29,12 @@ impl Vertex {
     /// Point `id` (position and scalar) projected into a ray's frame.
     #[inline(always)]
     pub fn load(points: &[[f32; 4]], ray: &Projector, id: u32) -> Vertex {
-        let q = Vec4::from_array(points[id as usize]);
-        let p = ray.project(q);
+        let (p, s) = ray.project_keep_w(Vec4::from_array(points[id as usize]));
         Vertex {
             x: f64::from(p.x),
             y: f64::from(p.y),
             z: p.z,
-            s: q.w,
+            s,
             id,
         }
     }
@@ -181,8 +180,9 @@ impl Face {
         // signs are combined without branches (a branch per sign costs
         // about one misprediction per step); an exact zero, rare, takes
         // the symbolic perturbation's side.
-        // Slot 3 is masked off.
-        let code = if lanes::zero_mask(e) & 7 != 0 {
+        // Slot 3 is left out. A product that underflows to zero only
+        // sends the signs the longer way, to the same answer.
+        let code = if e[0] * e[1] * e[2] == 0.0 {
             let mut code = 0;
             for (i, &edge) in e[..3].iter().enumerate() {
                 code |= usize::from(d.positive(&self.vertex(i), edge)) << i;
@@ -208,14 +208,14 @@ impl Face {
         let (t, value) = if sum == 0.0 {
             // The ray in the face's plane: any point of the face is the
             // crossing; take the nearest vertex, as crossing_distance does.
-            let i = if lo == z[0] {
-                0
+            let value = if lo == z[0] {
+                s[0]
             } else if lo == z[1] {
-                1
+                s[1]
             } else {
-                2
+                s[2]
             };
-            (lo, s[i])
+            (lo, value)
         } else {
             let inv = 1.0 / sum;
             let t =
