@@ -15,7 +15,7 @@ use tetray_core::camera::{Camera, CameraError, PixelRays};
 use tetray_core::image::{Image, ImageError};
 
 use crate::entries::EntryBins;
-use crate::walk::{RayCounters, SegmentIntegrator, WalkLimits, Walker};
+use crate::walk::{Cells, RayCounters, SegmentIntegrator, WalkLimits, Walker};
 use tetray_scene::Scene;
 
 /// Tile edge in pixels: neighbouring rays in both directions walk the same
@@ -514,24 +514,26 @@ impl<I: SegmentIntegrator + ?Sized> Frame<'_, I> {
         const { assert!(N <= 32) };
         let mut batch = [SampledSegment::default(); N];
         let mut lights = [SegmentLight::CLEAR; N];
+        // The frame's invariants, loaded once.
+        let (scene, integrator, limits) = (self.scene, self.integrator, self.limits);
+        let cells = Cells::of(scene);
         for (walker, _) in &mut slots {
-            walker.begin::<PREFETCH, _>(self.scene, self.integrator, self.limits);
+            walker.begin::<PREFETCH, _>(scene, cells, integrator, limits);
         }
-        let (records, points) = (self.scene.walk_records(), self.scene.point_records());
         while active > 0 {
             let mut live = 0;
             for (i, (walker, _)) in slots.iter_mut().enumerate() {
                 if PREFETCH {
-                    walker.prefetch_next_apex(records, points);
+                    walker.prefetch_next_apex(cells);
                 }
-                let integrate = walker.classify(self.integrator, &mut batch[i]);
+                let integrate = walker.classify(integrator, &mut batch[i]);
                 live |= u32::from(integrate) << i;
             }
-            self.integrator.segments(&batch, live, &mut lights);
+            integrator.segments(&batch, live, &mut lights);
             for (i, (walker, index)) in slots.iter_mut().enumerate() {
                 let light =
                     (live >> i & 1 != 0).then(|| (lights[i].emitted, lights[i].transmittance));
-                if !walker.end(light, self.limits) && *index != usize::MAX {
+                if !walker.end(light, limits) && *index != usize::MAX {
                     stats.add(&walker.counters);
                     finish(walker, *index);
                     match pixels.next() {
@@ -545,7 +547,7 @@ impl<I: SegmentIntegrator + ?Sized> Frame<'_, I> {
                         }
                     }
                 }
-                walker.begin::<PREFETCH, _>(self.scene, self.integrator, self.limits);
+                walker.begin::<PREFETCH, _>(scene, cells, integrator, limits);
             }
         }
         if let Some(progress) = self.progress {

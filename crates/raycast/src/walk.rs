@@ -64,6 +64,25 @@ pub trait SegmentIntegrator: Sync {
     }
 }
 
+/// The arrays a step of the walk reads, taken out of the scene once per
+/// band: handed to each stage by value, their pointers and lengths stay in
+/// registers or the stack frame instead of being loaded through the scene
+/// at every step.
+#[derive(Clone, Copy)]
+pub(crate) struct Cells<'a> {
+    pub records: &'a [WalkTet],
+    pub points: &'a [[f32; 4]],
+}
+
+impl<'a> Cells<'a> {
+    pub fn of(scene: &'a Scene) -> Self {
+        Cells {
+            records: scene.walk_records(),
+            points: scene.point_records(),
+        }
+    }
+}
+
 /// Limits of one walk.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct WalkLimits {
@@ -143,6 +162,10 @@ pub(crate) struct Walker<S> {
     /// (a ray grazing a pinch point would otherwise loop).
     skip: Vec<u32>,
     skip_t: f32,
+    /// `t_in` at the last entry: a segment of positive length since has
+    /// moved `t_in` past it, which ends the faces to skip (checked at the
+    /// next entry, so that the walk's steps do not clear the list).
+    entry_t: f32,
     /// The ray's entries, where the frame found them all beforehand
     /// ([`crate::entries`]); otherwise the BVH is asked.
     entries: Option<EntryList>,
@@ -163,7 +186,8 @@ pub(crate) struct Walker<S> {
     /// The finished intervals of a split walk, front to back.
     pub intervals: Vec<Interval>,
     interval_depth: f32,
-    interval_segments: u64,
+    /// `counters.segments` where the current interval began.
+    interval_start: u64,
     /// The left-out cells the ray crosses ([`crate::holes`]), found at its
     /// first entry query.
     holes: Holes,
@@ -181,6 +205,7 @@ impl<S: Copy + Default> Walker<S> {
             t_cursor: 0.0,
             skip: Vec::new(),
             skip_t: f32::NAN,
+            entry_t: f32::NAN,
             entries: None,
             tet: 0,
             t_exit: 0.0,
@@ -193,7 +218,7 @@ impl<S: Copy + Default> Walker<S> {
             split: false,
             intervals: Vec::new(),
             interval_depth: 0.0,
-            interval_segments: 0,
+            interval_start: 0,
             holes: Holes::default(),
         }
     }
@@ -211,14 +236,19 @@ impl<S: Copy + Default> Walker<S> {
     /// Ends the current interval of a split walk: keeps its light if a
     /// segment was integrated in it, and starts the next from clear.
     pub fn close_interval(&mut self) {
-        if self.interval_segments > 0 {
+        self.close_interval_lit(self.counters.segments > self.interval_start);
+    }
+
+    /// [`Walker::close_interval`], told whether the interval has light.
+    fn close_interval_lit(&mut self, lit: bool) {
+        if lit {
             self.intervals.push(Interval {
                 depth: self.interval_depth,
                 light: self.light,
             });
         }
         self.light = RayLight::CLEAR;
-        self.interval_segments = 0;
+        self.interval_start = self.counters.segments;
     }
 
     /// Starts a ray from distance `t_start` on (`-inf` when its origin may
@@ -233,9 +263,10 @@ impl<S: Copy + Default> Walker<S> {
         self.t_cursor = t_start;
         self.skip.clear();
         self.skip_t = f32::NAN;
+        self.entry_t = f32::NAN;
         self.entries = None;
         self.intervals.clear();
-        self.interval_segments = 0;
+        self.interval_start = 0;
         self.holes.clear();
     }
 
@@ -256,7 +287,7 @@ impl<S: Copy + Default> Walker<S> {
         integrator: &I,
         limits: WalkLimits,
     ) -> bool {
-        self.begin::<PREFETCH, I>(scene, integrator, limits);
+        self.begin::<PREFETCH, I>(scene, Cells::of(scene), integrator, limits);
         let mut segment = SampledSegment::default();
         let light = self
             .classify(integrator, &mut segment)
@@ -280,11 +311,12 @@ impl<S: Copy + Default> Walker<S> {
     pub fn begin<const PREFETCH: bool, I: SegmentIntegrator<Sample = S> + ?Sized>(
         &mut self,
         scene: &Scene,
+        cells: Cells<'_>,
         integrator: &I,
         limits: WalkLimits,
     ) {
         match self.phase {
-            Phase::Walking => self.exit::<PREFETCH>(scene, limits),
+            Phase::Walking => self.exit::<PREFETCH>(cells, limits),
             Phase::Entering => self.enter(scene, integrator, limits),
             Phase::Crossing | Phase::Done => {}
         }
@@ -315,6 +347,10 @@ impl<S: Copy + Default> Walker<S> {
         } else {
             self.t_cursor
         };
+        if self.t_in > self.entry_t {
+            self.skip.clear();
+            self.skip_t = f32::NAN;
+        }
         let found = match &self.entries {
             Some(list) => list.first_entry(t_query, f32::INFINITY, &self.skip),
             None => scene
@@ -342,8 +378,7 @@ impl<S: Copy + Default> Walker<S> {
             if self.split && filled.segments > 0 {
                 // The gap's light is an interval of its own.
                 self.interval_depth = filled.depth;
-                self.interval_segments = filled.segments;
-                self.close_interval();
+                self.close_interval_lit(true);
             }
             if filled.opaque {
                 self.phase = Phase::Done;
@@ -369,6 +404,7 @@ impl<S: Copy + Default> Walker<S> {
         self.tet = bf.tet as usize;
         (self.face, self.s_in) = Face::enter(scene.point_records(), &self.projector, bf.vertices);
         self.t_in = hit.t.max(self.t_cursor);
+        self.entry_t = self.t_in;
         self.sample_in = integrator.sample(self.s_in);
         self.interval_depth = self.t_in.max(0.0);
         self.phase = Phase::Walking;
@@ -376,8 +412,8 @@ impl<S: Copy + Default> Walker<S> {
 
     /// Finds where the ray leaves the current cell and the cell it enters.
     #[inline(always)]
-    fn exit<const PREFETCH: bool>(&mut self, scene: &Scene, limits: WalkLimits) {
-        let record = &scene.walk_records()[self.tet];
+    fn exit<const PREFETCH: bool>(&mut self, cells: Cells<'_>, limits: WalkLimits) {
+        let record = &cells.records[self.tet];
         if PREFETCH {
             // The next tetrahedron is one of the neighbours across the three
             // other faces: their records start loading now, while this step
@@ -385,10 +421,10 @@ impl<S: Copy + Default> Walker<S> {
             // one the ray came from is cached already), and a boundary
             // marker asks for the last record: no branch on which face is
             // which, whose outcome is as good as random.
-            let last = scene.walk_records().len() - 1;
+            let last = cells.records.len() - 1;
             for &next in &record.next {
                 let index = (next as usize).min(last);
-                tetray_memory::prefetch(&scene.walk_records()[index]);
+                tetray_memory::prefetch(&cells.records[index]);
             }
         }
         let counters = &mut self.counters;
@@ -401,7 +437,7 @@ impl<S: Copy + Default> Walker<S> {
         // Of this cell only the vertex opposite the entry face is new: the
         // XOR of the record's and the face's point indices.
         let apex = Vertex::load(
-            scene.point_records(),
+            cells.points,
             &self.projector,
             self.face.opposite(record.vert_xor),
         );
@@ -429,9 +465,11 @@ impl<S: Copy + Default> Walker<S> {
     /// mesh (a stale crossing), which is harmless, and one leaving the
     /// mesh (a boundary marker past the records) none.
     #[inline(always)]
-    pub fn prefetch_next_apex(&self, records: &[WalkTet], points: &[[f32; 4]]) {
-        if let Some(record) = records.get(self.crossing as usize)
-            && let Some(apex) = points.get(self.face.opposite(record.vert_xor) as usize)
+    pub fn prefetch_next_apex(&self, cells: Cells<'_>) {
+        if let Some(record) = cells.records.get(self.crossing as usize)
+            && let Some(apex) = cells
+                .points
+                .get(self.face.opposite(record.vert_xor) as usize)
         {
             tetray_memory::prefetch(apex);
         }
@@ -456,24 +494,20 @@ impl<S: Copy + Default> Walker<S> {
         let t_out = max_f32(t_exit, t_in);
         let sample_out = integrator.sample_near(s_out, &sample_in);
         let mut integrate = false;
-        if t_out > t_in {
-            self.skip.clear();
-            self.skip_t = f32::NAN;
-            if t_out > 0.0 {
-                // Clip at the ray origin; the scalar is linear along the
-                // segment, so interpolating it there is exact.
-                let front = if t_in < 0.0 {
-                    integrator.sample(s_in + (s_out - s_in) * (-t_in / (t_out - t_in)))
-                } else {
-                    sample_in
-                };
-                *segment = SampledSegment {
-                    front,
-                    back: sample_out,
-                    length: t_out - max_f32(t_in, 0.0),
-                };
-                integrate = true;
-            }
+        if t_out > t_in && t_out > 0.0 {
+            // Clip at the ray origin; the scalar is linear along the
+            // segment, so interpolating it there is exact.
+            let front = if t_in < 0.0 {
+                integrator.sample(s_in + (s_out - s_in) * (-t_in / (t_out - t_in)))
+            } else {
+                sample_in
+            };
+            *segment = SampledSegment {
+                front,
+                back: sample_out,
+                length: t_out - max_f32(t_in, 0.0),
+            };
+            integrate = true;
         }
         self.t_in = t_out;
         self.s_in = s_out;
@@ -489,7 +523,6 @@ impl<S: Copy + Default> Walker<S> {
             ray.color += ray.transmittance * emitted;
             ray.transmittance *= transmittance;
             self.counters.segments += 1;
-            self.interval_segments += 1;
             // 1 - mean(T) >= threshold, without a division.
             if ray.transmittance.element_sum() <= limits.stop_below_sum {
                 self.phase = Phase::Done;
