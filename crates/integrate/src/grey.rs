@@ -41,8 +41,8 @@ pub struct GreyKnots {
 pub struct GreySample {
     /// Luminance in `xyz`, the lane quantity in `w`.
     pub material: Vec4,
-    /// The scalar, its knot interval's index (its bits), and the
-    /// interval's scalar range `[lo, hi)` (`-inf` before the first knot,
+    /// The scalar, its knot interval's entry in `GreyKnots::intervals` (the
+    /// interval plus one, as bits), and the interval's scalar range `[lo, hi)` (`-inf` before the first knot,
     /// `+inf` after the last), so that the next sample is checked against
     /// it without reading the knots. One vector, so that a sample moves as
     /// two vector loads and stores (the walk copies one per step).
@@ -63,7 +63,13 @@ impl GreySample {
     /// The knot interval: `-1` before the first knot, `k` from knot `k` on.
     #[inline(always)]
     pub fn interval(&self) -> i32 {
-        self.key.y.to_bits() as i32
+        self.entry() as i32 - 1
+    }
+
+    /// The interval's entry in `GreyKnots::intervals`.
+    #[inline(always)]
+    fn entry(&self) -> usize {
+        self.key.y.to_bits() as usize
     }
 
     #[inline(always)]
@@ -125,11 +131,17 @@ impl GreyKnots {
 
     /// Material at `s` by the linear function of interval `k`, which is
     /// one of a sample's (from -1 to `n - 1`, the `n + 1` entries of
-    /// `intervals`; a default sample's 0 too, as there is at least one
-    /// knot): the index needs no clamp.
+    /// `intervals`; a default sample's -1 too): the index needs no clamp.
     #[inline(always)]
     fn in_interval(&self, k: isize, s: f32) -> Vec4 {
-        let iv = &self.intervals[(k + 1) as usize];
+        self.in_entry((k + 1) as usize, s)
+    }
+
+    /// [`GreyKnots::in_interval`] by the interval's entry (`k + 1`), which
+    /// a sample holds: no index arithmetic in the walk's classification.
+    #[inline(always)]
+    fn in_entry(&self, entry: usize, s: f32) -> Vec4 {
+        let iv = &self.intervals[entry];
         let t = clamp_f32((s - iv.x0) * iv.inv_width, 0.0, 1.0);
         iv.start + iv.delta * t
     }
@@ -150,7 +162,7 @@ impl GreyKnots {
             .unwrap_or(f32::INFINITY);
         GreySample {
             material: self.in_interval(k, s),
-            key: Vec4::new(s, f32::from_bits(k as i32 as u32), lo, hi),
+            key: Vec4::new(s, f32::from_bits((k + 1) as u32), lo, hi),
         }
     }
 
@@ -161,7 +173,7 @@ impl GreyKnots {
     pub fn sample_near(&self, s: f32, near: &GreySample) -> GreySample {
         if near.lo() <= s && s < near.hi() {
             GreySample {
-                material: self.in_interval(near.interval() as isize, s),
+                material: self.in_entry(near.entry(), s),
                 key: near.key.with_x(s),
             }
         } else {

@@ -388,7 +388,9 @@ fn cell(x: f32, last_cell: u32) -> (u32, f32) {
     let rounded = (x - 0.5) + ROUNDER;
     let i = rounded.to_bits().wrapping_sub(ROUNDER.to_bits());
     let i = i.min(last_cell);
-    (i, x - i as f32)
+    // A cell index is far below 2^31: converted as signed, one instruction
+    // (an unsigned conversion takes five in vector lanes), the same value.
+    (i, x - i as i32 as f32)
 }
 
 /// [`cell`] of each lane.
