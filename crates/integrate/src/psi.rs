@@ -16,7 +16,6 @@ use glam::Vec4;
 use rayon::prelude::*;
 
 use crate::IntegrateError;
-use crate::fastmath::by_fours;
 use crate::special::gauss_legendre_panel;
 
 /// Exponent drop (in e-folds) covered by one 16-point Gauss-Legendre panel:
@@ -280,17 +279,37 @@ impl PsiTable {
         one.min(Vec4::ZERO.max(u)) * self.last
     }
 
+    /// [`PsiTable::coord_lanes`] of one lane, with its operations: the
+    /// selects are those of SSE's `max` and `min` (the second operand when
+    /// unordered), which the compiler emits for them, as wide as the CPU
+    /// allows when a loop runs it over many lanes.
+    #[inline(always)]
+    fn coord(&self, tau_d: f32) -> f32 {
+        let u = match self.spacing {
+            GammaSpacing::Uniform => 1.0 - 1.0 / (1.0 + tau_d),
+            GammaSpacing::Quadratic => 1.0 - 1.0 / (1.0 + tau_d).sqrt(),
+        };
+        let above = if 0.0 > u { 0.0 } else { u };
+        let below = if 1.0 < above { 1.0 } else { above };
+        below * self.last
+    }
+
     /// [`PsiTable::lookup`] of `N` segments at once, lane by lane with its
     /// operations (so its bits), written as loops over the lanes so that
-    /// the coordinates vectorize; the four table reads per lane are scalar.
+    /// the coordinates vectorize (eight lanes at a time with AVX); the four
+    /// table reads per lane are scalar.
     #[inline(always)]
     pub fn lookup_lanes<const N: usize>(
         &self,
         tau_d_back: &[f32; N],
         tau_d_front: &[f32; N],
     ) -> [f32; N] {
-        let x = by_fours(tau_d_back, tau_d_back, |t, _| self.coord_lanes(t));
-        let y = by_fours(tau_d_front, tau_d_front, |t, _| self.coord_lanes(t));
+        let mut x = [0.0f32; N];
+        let mut y = [0.0f32; N];
+        for k in 0..N {
+            x[k] = self.coord(tau_d_back[k]);
+            y[k] = self.coord(tau_d_front[k]);
+        }
         let (i, fx) = cells(&x, self.last_cell);
         let (j, fy) = cells(&y, self.last_cell);
         let n = self.size;
