@@ -41,11 +41,12 @@ pub struct GreyKnots {
 pub struct GreySample {
     /// Luminance in `xyz`, the lane quantity in `w`.
     pub material: Vec4,
-    /// The scalar, its knot interval's entry in `GreyKnots::intervals` (the
-    /// interval plus one, as bits), and the interval's scalar range `[lo, hi)` (`-inf` before the first knot,
-    /// `+inf` after the last), so that the next sample is checked against
-    /// it without reading the knots. One vector, so that a sample moves as
-    /// two vector loads and stores (the walk copies one per step).
+    /// The scalar, its knot interval's entry in `GreyKnots::intervals`
+    /// (the interval plus one, as bits), and the interval's scalar range
+    /// `[lo, hi)` (`-inf` before the first knot, `+inf` after the last),
+    /// so that the next sample is checked against it without reading the
+    /// knots. One vector, so that a sample moves as two vector loads and
+    /// stores (the walk copies one per step).
     key: Vec4,
 }
 

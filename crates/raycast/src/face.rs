@@ -180,8 +180,10 @@ impl Face {
         // signs are combined without branches (a branch per sign costs
         // about one misprediction per step); an exact zero, rare, takes
         // the symbolic perturbation's side.
-        // Slot 3 is left out. A product that underflows to zero only
-        // sends the signs the longer way, to the same answer.
+        // Slot 3 is left out. The edge functions are finite (products of
+        // finite f32 values), so their product is zero when one is; one
+        // that underflows to zero only sends the signs the longer way, to
+        // the same answer.
         let code = if e[0] * e[1] * e[2] == 0.0 {
             let mut code = 0;
             for (i, &edge) in e[..3].iter().enumerate() {
