@@ -12,7 +12,6 @@
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
 
-use glam::Vec4;
 use rayon::prelude::*;
 
 use crate::IntegrateError;
@@ -255,40 +254,21 @@ impl PsiTable {
             .gamma_of_coord(i as f64 / (self.size - 1) as f64)
     }
 
-    /// Bilinear lookup by `(tau_b D, tau_f D)`, both `>= 0`.
-    ///
-    /// Both coordinates are computed at once in SIMD lanes, with the
-    /// operations of [`GammaSpacing::coord_of_tau_d`] and of the clamp in
-    /// [`PsiTable::bilinear`] per lane, so the same bits.
+    /// Bilinear lookup by `(tau_b D, tau_f D)`, both `>= 0`: the bits of
+    /// [`PsiTable::bilinear`] at [`GammaSpacing::coord_of_tau_d`].
     #[inline(always)]
     pub fn lookup(&self, tau_d_back: f32, tau_d_front: f32) -> f32 {
-        let x = self.coord_lanes(Vec4::new(tau_d_back, tau_d_front, 0.0, 0.0));
-        self.interpolate(x.x, x.y)
+        self.interpolate(self.coord(tau_d_back), self.coord(tau_d_front))
     }
 
-    /// Node coordinates in `[0, size - 1]` of four `tau D` values.
-    #[inline(always)]
-    fn coord_lanes(&self, tau_d: Vec4) -> Vec4 {
-        let one = Vec4::ONE;
-        let u = match self.spacing {
-            GammaSpacing::Uniform => one - (one + tau_d).recip(),
-            GammaSpacing::Quadratic => one - (one + tau_d).sqrt().recip(),
-        };
-        // max and min return their second operand when either is NaN: a
-        // NaN coordinate stays NaN, as through f32::clamp.
-        one.min(Vec4::ZERO.max(u)) * self.last
-    }
-
-    /// [`PsiTable::coord_lanes`] of one lane, with its operations: the
-    /// selects are those of SSE's `max` and `min` (the second operand when
-    /// unordered), which the compiler emits for them, as wide as the CPU
-    /// allows when a loop runs it over many lanes.
+    /// The node coordinate in `[0, size - 1]` of `tau D`: the clamp of
+    /// [`PsiTable::bilinear`] written as the selects of SSE's `max` and
+    /// `min` (a NaN passes through, as through `f32::clamp`), which the
+    /// compiler emits for them, as wide as the CPU allows when a loop runs
+    /// it over many lanes.
     #[inline(always)]
     fn coord(&self, tau_d: f32) -> f32 {
-        let u = match self.spacing {
-            GammaSpacing::Uniform => 1.0 - 1.0 / (1.0 + tau_d),
-            GammaSpacing::Quadratic => 1.0 - 1.0 / (1.0 + tau_d).sqrt(),
-        };
+        let u = self.spacing.coord_of_tau_d(tau_d);
         let above = if 0.0 > u { 0.0 } else { u };
         let below = if 1.0 < above { 1.0 } else { above };
         below * self.last
