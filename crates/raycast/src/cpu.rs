@@ -15,7 +15,9 @@ use tetray_core::camera::{Camera, CameraError, PixelRays};
 use tetray_core::image::{Image, ImageError};
 
 use crate::entries::EntryBins;
-use crate::walk::{Cells, RayCounters, SegmentIntegrator, WalkLimits, Walker};
+use crate::exits::{Lanes, wide_exits};
+use crate::segment::SegmentIntegrator;
+use crate::walk::{Cells, RayCounters, WalkLimits, Walker};
 use tetray_scene::Scene;
 
 /// Tile edge in pixels: neighbouring rays in both directions walk the same
@@ -272,8 +274,9 @@ pub fn trace_pixel<I: SegmentIntegrator + ?Sized>(
     let rays = camera.pixel_rays(opts.width, opts.height)?;
     let frame = Frame::new(scene, camera, &rays, integrator, opts);
     let mut walker = Walker::new();
+    let mut lanes = Lanes::new();
     frame.start(&mut walker, x as usize, y as usize);
-    while walker.advance::<false, _>(scene, integrator, frame.limits) {}
+    while walker.advance::<false, _>(scene, integrator, frame.limits, &mut lanes) {}
     let (light, c) = (walker.light, walker.counters);
     let alpha = 1.0 - light.transmittance.element_sum() / 3.0;
     Ok((
@@ -505,26 +508,31 @@ impl<I: SegmentIntegrator + ?Sized> Frame<'_, I> {
                 active += 1;
             }
         }
-        // Each round takes every ray one step, stage by stage: exits (or
-        // BVH entries), then classification, then the integration of all
-        // the segments at once, then compositing. `live` has a bit per ray.
-        // A ray's compositing and its next step's exit are one pass over
-        // the rays (the same order of stages for every ray, one loop fewer
-        // per round).
+        // Each round takes every ray one step, stage by stage: the vertex
+        // each ray leaves its cell against (or a BVH entry), the exits of
+        // all rays at once, then classification, then the integration of
+        // all the segments at once, then compositing. `live` has a bit per
+        // ray. A ray's compositing and its next step's vertex are one pass
+        // over the rays, as are its exit and classification (the same
+        // order of stages for every ray, one loop fewer per round).
         const { assert!(N <= 32) };
         let mut batch = [SampledSegment::default(); N];
         let mut lights = [SegmentLight::CLEAR; N];
         // The frame's invariants, loaded once.
         let (scene, integrator, limits) = (self.scene, self.integrator, self.limits);
         let cells = Cells::of(scene);
-        for (walker, _) in &mut slots {
-            walker.begin::<PREFETCH, _>(scene, cells, integrator, limits);
+        let mut lanes = Lanes::<N>::new();
+        let wide = wide_exits(self.wide);
+        for (i, (walker, _)) in slots.iter_mut().enumerate() {
+            walker.begin::<PREFETCH, N, _>(scene, cells, integrator, limits, &mut lanes, i);
         }
         while active > 0 {
+            lanes.exits(wide);
             let mut live = 0;
             for (i, (walker, _)) in slots.iter_mut().enumerate() {
+                walker.leave(cells, &mut lanes, i);
                 if PREFETCH {
-                    walker.prefetch_next_apex(cells);
+                    walker.prefetch_next_apex(cells, &lanes, i);
                 }
                 let integrate = walker.classify(integrator, &mut batch[i]);
                 live |= u32::from(integrate) << i;
@@ -547,7 +555,7 @@ impl<I: SegmentIntegrator + ?Sized> Frame<'_, I> {
                         }
                     }
                 }
-                walker.begin::<PREFETCH, _>(scene, cells, integrator, limits);
+                walker.begin::<PREFETCH, N, _>(scene, cells, integrator, limits, &mut lanes, i);
             }
         }
         if let Some(progress) = self.progress {

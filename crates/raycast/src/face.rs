@@ -18,11 +18,11 @@ use tetray_wide::lanes;
 /// ray, its scalar and its point index.
 #[derive(Clone, Copy)]
 pub(crate) struct Vertex {
-    x: f64,
-    y: f64,
-    z: f32,
-    s: f32,
-    id: u32,
+    pub x: f64,
+    pub y: f64,
+    pub z: f32,
+    pub s: f32,
+    pub id: u32,
 }
 
 impl Vertex {
@@ -67,7 +67,7 @@ impl Vertex {
 }
 
 /// No exit face (the sign patterns of a degenerate tetrahedron).
-const NONE: u8 = 3;
+pub(crate) const NONE: u8 = 3;
 
 /// For the signs of `E(d, v_i)` (bit `i` set when positive), the slot `k`
 /// of the entry face that the exit face leaves out: the exit is
@@ -77,8 +77,8 @@ const NONE: u8 = 3;
 /// holds the same table.
 pub const LEFT_OUT_SLOT: [u8; 8] = [NONE, 2, 0, 0, 1, 2, 1, NONE];
 /// The slots following and preceding slot `k` in the face's cyclic order.
-const FOLLOWING: [usize; 4] = [1, 2, 0, 0];
-const PRECEDING: [usize; 4] = [2, 0, 1, 0];
+pub(crate) const FOLLOWING: [usize; 4] = [1, 2, 0, 0];
+pub(crate) const PRECEDING: [usize; 4] = [2, 0, 1, 0];
 
 /// The face a ray entered its current tetrahedron through: three vertices
 /// in the cyclic order in which the ray sees every edge positive, and
@@ -88,12 +88,12 @@ const PRECEDING: [usize; 4] = [2, 0, 1, 0];
 /// bounds check).
 #[derive(Clone, Copy)]
 pub(crate) struct Face {
-    x: [f64; 4],
-    y: [f64; 4],
-    z: [f32; 4],
-    s: [f32; 4],
-    id: [u32; 4],
-    edge: [f64; 4],
+    pub x: [f64; 4],
+    pub y: [f64; 4],
+    pub z: [f32; 4],
+    pub s: [f32; 4],
+    pub id: [u32; 4],
+    pub edge: [f64; 4],
 }
 
 impl Face {
@@ -144,13 +144,6 @@ impl Face {
         }
         face.edge = [a.edge(&c), c.edge(&b), b.edge(&a), 0.0];
         (face, value as f32)
-    }
-
-    /// The point index of the vertex opposite this face in the
-    /// tetrahedron whose point indices XOR to `vert_xor`.
-    #[inline(always)]
-    pub fn opposite(&self, vert_xor: u32) -> u32 {
-        vert_xor ^ self.id[0] ^ self.id[1] ^ self.id[2]
     }
 
     /// The rank of point index `id` among those of the tetrahedron made of
@@ -237,7 +230,7 @@ impl Face {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use glam::Vec3;
     use tetray_core::watertight::{RayFrame, cross_triangle};
     use tetray_mesh::FACE_VERTICES;
@@ -255,51 +248,91 @@ mod tests {
         }
     }
 
+    /// A random tetrahedron entered through a random face by a ray aimed
+    /// at a random interior point, where the shared predicate finds one
+    /// exit face.
+    #[derive(Clone, Copy)]
+    pub(crate) struct Entered {
+        p: [Vec3; 4],
+        /// The entry face and the exit face (the face opposite vertex g
+        /// is face g).
+        entry: usize,
+        exit: usize,
+        ray: RayFrame,
+        pub face: Face,
+        pub apex: Vertex,
+    }
+
+    fn random_entered(rng: &mut Rng) -> Option<Entered> {
+        let mut p: [Vec3; 4] =
+            std::array::from_fn(|_| Vec3::new(rng.unit(), rng.unit(), rng.unit()) * 2.0 - 1.0);
+        let f = ((rng.unit() * 4.0) as usize).min(3);
+        let [i, j, k] = FACE_VERTICES[f];
+        let weights = [rng.unit(), rng.unit(), rng.unit()];
+        let sum = weights[0] + weights[1] + weights[2];
+        let on_face = (p[i] * weights[0] + p[j] * weights[1] + p[k] * weights[2]) / sum;
+        let inside = (p[0] + p[1] + p[2] + p[3]) * 0.25;
+        let ray = RayFrame::new(on_face - (inside - on_face) * 3.0, inside - on_face);
+        let crossing = |p: &[Vec3; 4], g: usize| {
+            let [a, b, c] = FACE_VERTICES[g].map(|v| ray.project(p[v]));
+            cross_triangle(a, b, c)
+        };
+        if !crossing(&p, f).is_some_and(|c| c.entering) {
+            // Negatively oriented: swapping two of face f's vertices
+            // keeps the face and turns the tetrahedron over.
+            p.swap(i, j);
+            if !crossing(&p, f).is_some_and(|c| c.entering) {
+                return None;
+            }
+        }
+        let leaving: Vec<usize> = (0..4)
+            .filter(|&g| g != f && crossing(&p, g).is_some_and(|c| !c.entering))
+            .collect();
+        let [exit] = leaving[..] else {
+            return None;
+        };
+        let points: Vec<[f32; 4]> = p.iter().map(|v| [v.x, v.y, v.z, v.x]).collect();
+        let projector = Projector::new(&ray);
+        let entry = FACE_VERTICES[f].map(|v| v as u32);
+        let (face, _) = Face::enter(&points, &projector, entry);
+        let apex = Vertex::load(&points, &projector, f as u32);
+        Some(Entered {
+            p,
+            entry: f,
+            exit,
+            ray,
+            face,
+            apex,
+        })
+    }
+
+    /// Up to `tries` random entered tetrahedra ([`random_entered`]).
+    pub(crate) fn random_entries(tries: usize) -> Vec<Entered> {
+        let mut rng = Rng(0x2545_f491);
+        (0..tries)
+            .filter_map(|_| random_entered(&mut rng))
+            .collect()
+    }
+
     /// Random tetrahedra, each entered through a random face by a ray aimed
     /// at a random interior point: the face the carried-face exit leaves
     /// through is the one face the shared predicate says the ray leaves
     /// through, and the new entry face's edges are those of that face.
     #[test]
     fn the_exit_is_the_face_the_ray_leaves_through() {
-        let mut rng = Rng(0x2545_f491);
-        let mut checked = 0;
-        for _ in 0..20_000 {
-            let mut p: [Vec3; 4] =
-                std::array::from_fn(|_| Vec3::new(rng.unit(), rng.unit(), rng.unit()) * 2.0 - 1.0);
-            let f = ((rng.unit() * 4.0) as usize).min(3);
-            let [i, j, k] = FACE_VERTICES[f];
-            let weights = [rng.unit(), rng.unit(), rng.unit()];
-            let sum = weights[0] + weights[1] + weights[2];
-            let on_face = (p[i] * weights[0] + p[j] * weights[1] + p[k] * weights[2]) / sum;
-            let inside = (p[0] + p[1] + p[2] + p[3]) * 0.25;
-            let ray = RayFrame::new(on_face - (inside - on_face) * 3.0, inside - on_face);
-            let crossing = |p: &[Vec3; 4], g: usize| {
-                let [a, b, c] = FACE_VERTICES[g].map(|v| ray.project(p[v]));
-                cross_triangle(a, b, c)
-            };
-            if !crossing(&p, f).is_some_and(|c| c.entering) {
-                // Negatively oriented: swapping two of face f's vertices
-                // keeps the face and turns the tetrahedron over.
-                p.swap(i, j);
-                if !crossing(&p, f).is_some_and(|c| c.entering) {
-                    continue;
-                }
-            }
-            let leaving: Vec<usize> = (0..4)
-                .filter(|&g| g != f && crossing(&p, g).is_some_and(|c| !c.entering))
-                .collect();
-            let [exit] = leaving[..] else {
-                continue;
-            };
-            let points: Vec<[f32; 4]> = p.iter().map(|v| [v.x, v.y, v.z, v.x]).collect();
-            let projector = Projector::new(&ray);
-            let entry = FACE_VERTICES[f].map(|v| v as u32);
-            let (mut face, _) = Face::enter(&points, &projector, entry);
-            let apex = Vertex::load(&points, &projector, f as u32);
+        let entries = random_entries(20_000);
+        for entered in &entries {
+            let Entered {
+                p,
+                entry: f,
+                exit,
+                ray,
+                mut face,
+                apex,
+            } = *entered;
             let Some((rank, t, _)) = face.exit(apex) else {
                 panic!("no exit from {p:?} entered through {f}");
             };
-            // The face opposite vertex g is face g.
             // Point indices 0 to 3: a vertex's rank is its index.
             assert_eq!(rank, exit, "{p:?} entered through {f}");
             let z = FACE_VERTICES[exit].map(|v| ray.project(p[v]).z);
@@ -310,9 +343,12 @@ mod tests {
                 assert_eq!(face.edge[s].to_bits(), a.edge(&b).to_bits());
                 assert!(a.positive(&b, face.edge[s]), "{p:?} entered through {f}");
             }
-            checked += 1;
         }
-        assert!(checked > 15_000, "only {checked} tetrahedra checked");
+        assert!(
+            entries.len() > 15_000,
+            "only {} tetrahedra checked",
+            entries.len()
+        );
     }
 
     /// The carried face and the XOR give the fourth vertex, and the rank
@@ -327,7 +363,9 @@ mod tests {
             for (slot, id) in others.enumerate() {
                 face.id[slot] = id;
             }
-            let apex = face.opposite(xor);
+            let mut lanes = crate::exits::Lanes::<1>::new();
+            lanes.set_face(0, &face);
+            let apex = lanes.opposite(0, xor);
             assert_eq!(apex, verts[skip]);
             for &id in &face.id[..3] {
                 assert_eq!(face.rank(apex, id), tetray_scene::vertex_rank(verts, id));

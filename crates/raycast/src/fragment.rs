@@ -16,7 +16,8 @@ use rayon::prelude::*;
 use tetray_integrate::{KernelVisitor, ScalarIntegrator, SegmentKernel, Typed};
 
 use crate::cpu::{BAND_ROWS, Frame, RenderError, RenderOptions, RenderStats, in_pool};
-use crate::walk::{SegmentIntegrator, WalkLimits, Walker};
+use crate::segment::SegmentIntegrator;
+use crate::walk::{WalkLimits, Walker};
 use tetray_core::camera::Camera;
 use tetray_scene::Scene;
 

@@ -10,9 +10,11 @@
 
 mod cpu;
 mod entries;
+mod exits;
 mod face;
 mod fragment;
 mod holes;
+mod segment;
 mod walk;
 
 pub use cpu::{
@@ -22,4 +24,4 @@ pub use cpu::{
 };
 pub use face::LEFT_OUT_SLOT;
 pub use fragment::{Fragment, FragmentOutput, render_fragments, render_scalar_fragments};
-pub use walk::SegmentIntegrator;
+pub use segment::SegmentIntegrator;

@@ -6,63 +6,15 @@
 use glam::{Vec3, Vec3A};
 use tetray_boundary_bvh::reentry_start;
 use tetray_core::watertight::{Projector, RayFrame};
+use tetray_integrate::SampledSegment;
 use tetray_integrate::fastmath::max_f32;
-use tetray_integrate::{SampledSegment, SegmentLight};
 
 use crate::entries::EntryList;
+use crate::exits::Lanes;
 use crate::face::{Face, Vertex};
 use crate::holes::Holes;
+use crate::segment::SegmentIntegrator;
 use tetray_scene::{FINAL_EXIT, Scene, WalkTet};
-
-/// The light of one ray segment, front (nearer the eye) to back.
-///
-/// The walk classifies the scalar at every face it crosses once
-/// ([`SegmentIntegrator::sample`]) and passes the classified values of both
-/// ends to [`SegmentIntegrator::segment`]: the back of one segment is the
-/// front of the next.
-pub trait SegmentIntegrator: Sync {
-    /// What the integrator keeps of a scalar value.
-    type Sample: Copy + Default;
-
-    /// Classifies the scalar `s`.
-    fn sample(&self, s: f32) -> Self::Sample;
-
-    /// Classifies `s`, known to be close to the value of `near`.
-    #[inline]
-    fn sample_near(&self, s: f32, near: &Self::Sample) -> Self::Sample {
-        let _ = near;
-        self.sample(s)
-    }
-
-    /// Emitted light reaching the segment's front end and the segment's
-    /// transmittance, for a scalar linear from `front` to `back` over
-    /// `length` world units.
-    fn segment(&self, front: &Self::Sample, back: &Self::Sample, length: f32) -> (Vec3A, Vec3A);
-
-    /// [`SegmentIntegrator::segment`] of the segments of several rays in
-    /// flight, written into `lights`: lane `i` where bit `i` of `live` is
-    /// set, anything elsewhere. An integrator may integrate its lanes
-    /// together, to the same bits.
-    #[inline(always)]
-    fn segments<const N: usize>(
-        &self,
-        batch: &[SampledSegment<Self::Sample>; N],
-        live: u32,
-        lights: &mut [SegmentLight; N],
-    ) {
-        for (i, (light, s)) in lights.iter_mut().zip(batch).enumerate() {
-            *light = if live >> i & 1 == 0 {
-                SegmentLight::CLEAR
-            } else {
-                let (emitted, transmittance) = self.segment(&s.front, &s.back, s.length);
-                SegmentLight {
-                    emitted,
-                    transmittance,
-                }
-            };
-        }
-    }
-}
 
 /// The arrays a step of the walk reads, taken out of the scene once per
 /// band: handed to each stage by value, their pointers and lengths stay in
@@ -175,7 +127,6 @@ pub(crate) struct Walker<S> {
     s_out: f32,
     /// The record's entry across the exit face of the step in progress.
     crossing: u32,
-    face: Face,
     t_in: f32,
     s_in: f32,
     /// The classified `s_in` (set on entry).
@@ -211,7 +162,6 @@ impl<S: Copy + Default> Walker<S> {
             t_exit: 0.0,
             s_out: 0.0,
             crossing: FINAL_EXIT,
-            face: Face::EMPTY,
             t_in: 0.0,
             s_in: 0.0,
             sample_in: S::default(),
@@ -279,15 +229,20 @@ impl<S: Copy + Default> Walker<S> {
     }
 
     /// One BVH query or one tetrahedron, its segment integrated alone;
-    /// returns whether the ray goes on.
+    /// returns whether the ray goes on. `lanes` holds the ray's face
+    /// between calls.
     #[inline(always)]
     pub fn advance<const PREFETCH: bool, I: SegmentIntegrator<Sample = S> + ?Sized>(
         &mut self,
         scene: &Scene,
         integrator: &I,
         limits: WalkLimits,
+        lanes: &mut Lanes<1>,
     ) -> bool {
-        self.begin::<PREFETCH, I>(scene, Cells::of(scene), integrator, limits);
+        let cells = Cells::of(scene);
+        self.begin::<PREFETCH, 1, I>(scene, cells, integrator, limits, lanes, 0);
+        lanes.exits(None);
+        self.leave(cells, lanes, 0);
         let mut segment = SampledSegment::default();
         let light = self
             .classify(integrator, &mut segment)
@@ -295,29 +250,39 @@ impl<S: Copy + Default> Walker<S> {
         self.end(light, limits)
     }
 
-    /// The first stage of [`Walker::advance`]: one BVH query, or where the
-    /// ray leaves its tetrahedron. Then [`Walker::classify`] finds the
-    /// step's segment and [`Walker::end`] composites its light. A thread
-    /// with many rays in flight takes each stage for all of them in turn
-    /// and integrates their segments together: the stages of different
-    /// rays are independent, and the processor overlaps them, where one
-    /// ray's step is a single chain of dependent operations.
+    /// The first stage of [`Walker::advance`]: one BVH query, or the
+    /// vertex of the ray's tetrahedron that its exit is found against,
+    /// given to the ray's lane of `lanes` (where the face it entered
+    /// through is). [`Lanes::exits`] then finds the exits of all lanes
+    /// at once, [`Walker::leave`] takes the ray's, [`Walker::classify`]
+    /// finds the step's segment and [`Walker::end`] composites its light.
+    /// A thread with many rays in flight takes each stage for all of them
+    /// in turn and integrates their segments together: the stages of
+    /// different rays are independent, and the processor overlaps them,
+    /// where one ray's step is a single chain of dependent operations.
     ///
     /// With `PREFETCH`, each step first prefetches the records of the three
     /// cells the ray may enter next, so that a mesh too large for the
     /// caches costs less than a miss per step: the record arrives while the
     /// step computes its exit and integrates.
     #[inline(always)]
-    pub fn begin<const PREFETCH: bool, I: SegmentIntegrator<Sample = S> + ?Sized>(
+    pub fn begin<
+        const PREFETCH: bool,
+        const N: usize,
+        I: SegmentIntegrator<Sample = S> + ?Sized,
+    >(
         &mut self,
         scene: &Scene,
         cells: Cells<'_>,
         integrator: &I,
         limits: WalkLimits,
+        lanes: &mut Lanes<N>,
+        lane: usize,
     ) {
+        lanes.rest(lane);
         match self.phase {
-            Phase::Walking => self.exit::<PREFETCH>(cells, limits),
-            Phase::Entering => self.enter(scene, integrator, limits),
+            Phase::Walking => self.apex::<PREFETCH, N>(cells, limits, lanes, lane),
+            Phase::Entering => self.enter(scene, integrator, limits, lanes, lane),
             Phase::Crossing | Phase::Done => {}
         }
     }
@@ -335,11 +300,13 @@ impl<S: Copy + Default> Walker<S> {
     }
 
     #[inline(always)]
-    fn enter<I: SegmentIntegrator<Sample = S> + ?Sized>(
+    fn enter<const N: usize, I: SegmentIntegrator<Sample = S> + ?Sized>(
         &mut self,
         scene: &Scene,
         integrator: &I,
         limits: WalkLimits,
+        lanes: &mut Lanes<N>,
+        lane: usize,
     ) {
         // Re-entries start a little before the exit (see REENTRY_REL).
         let t_query = if self.counters.entries > 0 {
@@ -402,7 +369,9 @@ impl<S: Copy + Default> Walker<S> {
             return;
         };
         self.tet = bf.tet as usize;
-        (self.face, self.s_in) = Face::enter(scene.point_records(), &self.projector, bf.vertices);
+        let (face, s_in) = Face::enter(scene.point_records(), &self.projector, bf.vertices);
+        lanes.set_face(lane, &face);
+        self.s_in = s_in;
         self.t_in = hit.t.max(self.t_cursor);
         self.entry_t = self.t_in;
         self.sample_in = integrator.sample(self.s_in);
@@ -410,9 +379,16 @@ impl<S: Copy + Default> Walker<S> {
         self.phase = Phase::Walking;
     }
 
-    /// Finds where the ray leaves the current cell and the cell it enters.
+    /// Loads the vertex of the current cell opposite the face the ray
+    /// entered through, against which [`Lanes::exits`] finds the exit.
     #[inline(always)]
-    fn exit<const PREFETCH: bool>(&mut self, cells: Cells<'_>, limits: WalkLimits) {
+    fn apex<const PREFETCH: bool, const N: usize>(
+        &mut self,
+        cells: Cells<'_>,
+        limits: WalkLimits,
+        lanes: &mut Lanes<N>,
+        lane: usize,
+    ) {
         let record = &cells.records[self.tet];
         if PREFETCH {
             // The next tetrahedron is one of the neighbours across the three
@@ -436,14 +412,21 @@ impl<S: Copy + Default> Walker<S> {
         }
         // Of this cell only the vertex opposite the entry face is new: the
         // XOR of the record's and the face's point indices.
-        let apex = Vertex::load(
-            cells.points,
-            &self.projector,
-            self.face.opposite(record.vert_xor),
-        );
-        let Some((rank, t_exit, s_out)) = self.face.exit(apex) else {
+        let apex = lanes.opposite(lane, record.vert_xor);
+        lanes.set_apex(lane, Vertex::load(cells.points, &self.projector, apex));
+    }
+
+    /// Takes the exit [`Lanes::exits`] found for the ray (if it was given
+    /// a vertex this round): where it leaves the current cell and the
+    /// cell it enters.
+    #[inline(always)]
+    pub fn leave<const N: usize>(&mut self, cells: Cells<'_>, lanes: &mut Lanes<N>, lane: usize) {
+        if !lanes.is_leaving(lane) {
+            return;
+        }
+        let Some((rank, t_exit, s_out)) = lanes.exit(lane) else {
             // Only a degenerate (flat) tetrahedron has no exit face.
-            counters.walk_failure = true;
+            self.counters.walk_failure = true;
             self.phase = Phase::Done;
             return;
         };
@@ -451,7 +434,7 @@ impl<S: Copy + Default> Walker<S> {
         self.s_out = s_out;
         // The exit face is the one opposite the entry face's vertex it
         // leaves out, whose rank among the cell's four names the neighbour.
-        self.crossing = record.next[rank & 3];
+        self.crossing = cells.records[self.tet].next[rank & 3];
         self.phase = Phase::Crossing;
     }
 
@@ -465,11 +448,16 @@ impl<S: Copy + Default> Walker<S> {
     /// mesh (a stale crossing), which is harmless, and one leaving the
     /// mesh (a boundary marker past the records) none.
     #[inline(always)]
-    pub fn prefetch_next_apex(&self, cells: Cells<'_>) {
+    pub fn prefetch_next_apex<const N: usize>(
+        &self,
+        cells: Cells<'_>,
+        lanes: &Lanes<N>,
+        lane: usize,
+    ) {
         if let Some(record) = cells.records.get(self.crossing as usize)
             && let Some(apex) = cells
                 .points
-                .get(self.face.opposite(record.vert_xor) as usize)
+                .get(lanes.opposite(lane, record.vert_xor) as usize)
         {
             tetray_memory::prefetch(apex);
         }
@@ -547,38 +535,5 @@ impl<S: Copy + Default> Walker<S> {
         }
         self.tet = next as usize;
         self.phase = Phase::Walking;
-    }
-}
-
-/// An integrator with its method fixed in its type (see
-/// `ScalarIntegrator::dispatch`): the walk's inner loop is compiled per
-/// method.
-impl<K: tetray_integrate::SegmentKernel> SegmentIntegrator for tetray_integrate::Typed<'_, K> {
-    type Sample = K::Sample;
-
-    #[inline(always)]
-    fn sample(&self, s: f32) -> Self::Sample {
-        tetray_integrate::Typed::sample(self, s)
-    }
-
-    #[inline(always)]
-    fn sample_near(&self, s: f32, near: &Self::Sample) -> Self::Sample {
-        tetray_integrate::Typed::sample_near(self, s, near)
-    }
-
-    #[inline(always)]
-    fn segment(&self, front: &Self::Sample, back: &Self::Sample, length: f32) -> (Vec3A, Vec3A) {
-        let light = self.integrate_samples(front, back, length);
-        (light.emitted, light.transmittance)
-    }
-
-    #[inline(always)]
-    fn segments<const N: usize>(
-        &self,
-        batch: &[SampledSegment<Self::Sample>; N],
-        live: u32,
-        lights: &mut [SegmentLight; N],
-    ) {
-        self.integrate_batch(batch, live, lights)
     }
 }

@@ -7,7 +7,13 @@
 //! instructions (three-operand AVX forms of the SSE arithmetic, no
 //! register copies). Rust never fuses a multiplication and an addition
 //! into an FMA on its own, so the results are the same bits.
+//!
+//! [`lanes`] answers comparisons of four lanes as bit masks (SSE2, part
+//! of every x86-64 CPU); [`avx2`] holds four f64 lanes in one AVX2
+//! register, for code that [`run`] compiles for x86-64-v3.
 
+#[cfg(target_arch = "x86_64")]
+pub mod avx2;
 pub mod lanes;
 
 /// Whether [`run`] takes the x86-64-v3 copy: on a CPU with the features,

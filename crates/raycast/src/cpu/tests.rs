@@ -5,7 +5,7 @@ use glam::Vec3A;
 use tetray_mesh::Topology;
 
 use super::*;
-use crate::walk::SegmentIntegrator;
+use crate::segment::SegmentIntegrator;
 use tetray_mesh::synthetic::{CellSplit, ScalarSpec, add_field, hollow_box};
 
 /// Light growing with the segment's length and scalars.

@@ -1,0 +1,427 @@
+//! The exits of the rays a thread keeps in flight, computed together: the
+//! carried faces ([`Face`]) of all the rays held slot by slot and ray by
+//! ray (one array per quantity and slot, a lane per ray), so that the
+//! arithmetic of an exit (three edge functions, their signs, the exit
+//! face's weights and barycentric interpolation, the new face) is one
+//! vector operation for four rays instead of a chain per ray.
+//!
+//! Every lane computes what [`Face::exit`] computes, with the same
+//! operations in the same order, so the bits are the same: the f32
+//! quantities (distances, scalars) are held widened to f64, exactly, and
+//! narrowed back exactly. A lane whose edge functions hold an exact zero
+//! (the ray through a vertex or an edge), whose signs name no exit (a flat
+//! cell) or whose exit face lies in the ray's plane is left to
+//! [`Face::exit`] itself: all three are rare.
+
+use crate::face::{FOLLOWING, Face, LEFT_OUT_SLOT, NONE, PRECEDING, Vertex};
+use tetray_integrate::fastmath::{clamp_f32, max_f32, min_f32};
+#[cfg(target_arch = "x86_64")]
+use tetray_wide::avx2::F64x4;
+use tetray_wide::lanes;
+
+/// The faces, the new vertices and the exits of `N` rays.
+#[derive(Clone)]
+pub(crate) struct Lanes<const N: usize> {
+    /// Slot `j` of the face of lane `i` is `x[j][i]`, `y[j][i]`, ...; as
+    /// in [`Face`], `edge[j]` is `E(v_j, v_{j+1})`.
+    x: [[f64; N]; 3],
+    y: [[f64; N]; 3],
+    z: [[f64; N]; 3],
+    s: [[f64; N]; 3],
+    /// Slot 3 is unused: a slot masked to two bits indexes it without a
+    /// bounds check.
+    id: [[u32; N]; 4],
+    /// The point indices again as f64 (exact below 2^31, in order), which
+    /// the vectors rank.
+    id_f: [[f64; N]; 3],
+    edge: [[f64; N]; 3],
+    /// The vertex opposite each lane's face in its current cell.
+    apex_x: [f64; N],
+    apex_y: [f64; N],
+    apex_z: [f64; N],
+    apex_s: [f64; N],
+    apex_id: [u32; N],
+    apex_id_f: [f64; N],
+    /// Bit `i` set where lane `i`'s ray is leaving its cell this round.
+    live: u32,
+    /// What [`Lanes::exits`] found: the slot the exit face leaves out
+    /// (0, 1 or 2), the rank of its vertex, the distance and the scalar,
+    /// and bit `i` set where lane `i` is left to [`Face::exit`].
+    left_out: [u32; N],
+    rank: [u32; N],
+    t: [f32; N],
+    value: [f32; N],
+    alone: u32,
+    /// Whether [`Lanes::exits`] found the exits of all lanes (else
+    /// [`Lanes::exit`] finds each).
+    found: bool,
+}
+
+impl<const N: usize> Lanes<N> {
+    pub fn new() -> Self {
+        const { assert!(N <= 32) };
+        Lanes {
+            x: [[0.0; N]; 3],
+            y: [[0.0; N]; 3],
+            z: [[0.0; N]; 3],
+            s: [[0.0; N]; 3],
+            id: [[0; N]; 4],
+            id_f: [[0.0; N]; 3],
+            edge: [[0.0; N]; 3],
+            apex_x: [0.0; N],
+            apex_y: [0.0; N],
+            apex_z: [0.0; N],
+            apex_s: [0.0; N],
+            apex_id: [0; N],
+            apex_id_f: [0.0; N],
+            live: 0,
+            left_out: [0; N],
+            rank: [0; N],
+            t: [0.0; N],
+            value: [0.0; N],
+            alone: 0,
+            found: false,
+        }
+    }
+
+    /// The face of `lane`.
+    pub fn face(&self, lane: usize) -> Face {
+        let mut face = Face::EMPTY;
+        for j in 0..3 {
+            face.x[j] = self.x[j][lane];
+            face.y[j] = self.y[j][lane];
+            face.z[j] = self.z[j][lane] as f32;
+            face.s[j] = self.s[j][lane] as f32;
+            face.id[j] = self.id[j][lane];
+            face.edge[j] = self.edge[j][lane];
+        }
+        face
+    }
+
+    /// Makes `face` the face of `lane`.
+    pub fn set_face(&mut self, lane: usize, face: &Face) {
+        for j in 0..3 {
+            self.x[j][lane] = face.x[j];
+            self.y[j][lane] = face.y[j];
+            self.z[j][lane] = f64::from(face.z[j]);
+            self.s[j][lane] = f64::from(face.s[j]);
+            self.id[j][lane] = face.id[j];
+            self.id_f[j][lane] = f64::from(face.id[j]);
+            self.edge[j][lane] = face.edge[j];
+        }
+    }
+
+    /// The point index of the vertex opposite the face of `lane` in the
+    /// tetrahedron whose point indices XOR to `vert_xor`.
+    #[inline(always)]
+    pub fn opposite(&self, lane: usize, vert_xor: u32) -> u32 {
+        vert_xor ^ self.id[0][lane] ^ self.id[1][lane] ^ self.id[2][lane]
+    }
+
+    /// Makes `apex` the vertex `lane`'s ray leaves its cell against at the
+    /// next [`Lanes::exits`].
+    #[inline(always)]
+    pub fn set_apex(&mut self, lane: usize, apex: Vertex) {
+        self.apex_x[lane] = apex.x;
+        self.apex_y[lane] = apex.y;
+        self.apex_z[lane] = f64::from(apex.z);
+        self.apex_s[lane] = f64::from(apex.s);
+        self.apex_id[lane] = apex.id;
+        self.apex_id_f[lane] = f64::from(apex.id);
+        self.live |= 1 << lane;
+    }
+
+    /// Whether `lane` was given a vertex ([`Lanes::set_apex`]) since it
+    /// last rested.
+    #[inline(always)]
+    pub fn is_leaving(&self, lane: usize) -> bool {
+        self.live >> lane & 1 != 0
+    }
+
+    /// Marks `lane` as not leaving a cell at the next [`Lanes::exits`].
+    #[inline(always)]
+    pub fn rest(&mut self, lane: usize) {
+        self.live &= !(1 << lane);
+    }
+
+    /// [`Face::exit`] of a lane given a vertex since it last rested,
+    /// after [`Lanes::exits`]: the face is moved to the exit face (its
+    /// point indices here, the rest by [`Lanes::exits`]); `None` for a
+    /// degenerate cell.
+    #[inline(always)]
+    pub fn exit(&mut self, lane: usize) -> Option<(usize, f32, f32)> {
+        if !self.found {
+            self.exit_lane(lane);
+        }
+        if self.alone >> lane & 1 != 0 {
+            let mut face = self.face(lane);
+            let apex = Vertex {
+                x: self.apex_x[lane],
+                y: self.apex_y[lane],
+                z: self.apex_z[lane] as f32,
+                s: self.apex_s[lane] as f32,
+                id: self.apex_id[lane],
+            };
+            let exit = face.exit(apex)?;
+            self.set_face(lane, &face);
+            return Some(exit);
+        }
+        let k = self.left_out[lane] as usize & 3;
+        self.id[k][lane] = self.apex_id[lane];
+        Some((self.rank[lane] as usize, self.t[lane], self.value[lane]))
+    }
+
+    /// The exits of the live lanes, read by [`Lanes::exit`] (see the
+    /// module's comment for the lanes left alone): four lanes to an AVX2
+    /// vector where the caller holds the token; else each lane's when
+    /// [`Lanes::exit`] asks for it (one pass over the rays fewer). The
+    /// same bits either way.
+    #[inline(always)]
+    pub fn exits(&mut self, wide: Option<Wide>) {
+        self.found = false;
+        #[cfg(target_arch = "x86_64")]
+        if let Some(avx2) = wide
+            && N.is_multiple_of(4)
+        {
+            for quad in 0..N / 4 {
+                self.exits_avx2(avx2, 4 * quad);
+            }
+            self.found = true;
+        }
+        let _ = wide;
+    }
+
+    /// [`Lanes::exits`] of lane `i` alone, if it is leaving: the steps of
+    /// [`Face::exit`] on the lane's slots.
+    #[inline(always)]
+    fn exit_lane(&mut self, i: usize) {
+        if self.live >> i & 1 == 0 {
+            return;
+        }
+        let (dx, dy) = (self.apex_x[i], self.apex_y[i]);
+        // E(d, v_j) of the three slots, as Face::exit.
+        let e: [f64; 3] = std::array::from_fn(|j| dx * self.y[j][i] - dy * self.x[j][i]);
+        let k = LEFT_OUT_SLOT[(lanes::positive_mask([e[0], e[1], e[2], 0.0]) & 7) as usize];
+        if e[0] * e[1] * e[2] == 0.0 || k == NONE {
+            self.alone |= 1 << i;
+            return;
+        }
+        let k = usize::from(k & 3);
+        let (next, prev) = (FOLLOWING[k], PRECEDING[k]);
+        let w = [self.edge[next][i], -e[prev], e[next]];
+        let z = [self.apex_z[i], self.z[next][i], self.z[prev][i]].map(|z| z as f32);
+        let s = [self.apex_s[i], self.s[next][i], self.s[prev][i]];
+        let sum = w[0] + w[1] + w[2];
+        if sum == 0.0 {
+            self.alone |= 1 << i;
+            return;
+        }
+        self.alone &= !(1 << i);
+        let lo = min_f32(min_f32(z[0], z[1]), z[2]);
+        let hi = max_f32(max_f32(z[0], z[1]), z[2]);
+        let inv = 1.0 / sum;
+        let t = (w[0] * f64::from(z[0]) + w[1] * f64::from(z[1]) + w[2] * f64::from(z[2])) * inv;
+        self.t[i] = clamp_f32(t as f32, lo, hi);
+        self.value[i] = ((w[0] * s[0] + w[1] * s[1] + w[2] * s[2]) * inv) as f32;
+        // The rank of the left-out vertex among the cell's four, as
+        // tetray_scene::vertex_rank.
+        let ids = [self.id[0][i], self.id[1][i], self.id[2][i], self.apex_id[i]];
+        self.rank[i] = tetray_scene::vertex_rank(ids, ids[k]) as u32;
+        self.left_out[i] = k as u32;
+        // The apex takes slot k, as Face::exit (the point index by
+        // Lanes::exit).
+        self.x[k][i] = dx;
+        self.y[k][i] = dy;
+        self.z[k][i] = self.apex_z[i];
+        self.s[k][i] = self.apex_s[i];
+        self.id_f[k][i] = self.apex_id_f[i];
+        self.edge[k][i] = e[next];
+        self.edge[prev][i] = -e[prev];
+    }
+}
+
+/// The token of the wide exits ([`Lanes::exits`]): where the CPU has AVX2.
+#[cfg(target_arch = "x86_64")]
+pub(crate) type Wide = tetray_wide::avx2::Avx2;
+/// No wide exits off x86-64.
+#[cfg(not(target_arch = "x86_64"))]
+pub(crate) type Wide = std::convert::Infallible;
+
+/// The token of the wide exits where the walk runs compiled for
+/// x86-64-v3 (`wide`, see [`tetray_wide::run`]).
+pub(crate) fn wide_exits(wide: bool) -> Option<Wide> {
+    #[cfg(target_arch = "x86_64")]
+    return if wide {
+        tetray_wide::avx2::Avx2::detect()
+    } else {
+        None
+    };
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        let _ = wide;
+        None
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+impl<const N: usize> Lanes<N> {
+    /// [`Lanes::exit_lane`] of lanes `i..i + 4` at once, in AVX2 vectors
+    /// of f64, its branches as selects: the slot left out is three masks
+    /// (one set unless the signs all agree), the point indices are ranked
+    /// as f64 (exact below 2^31, in order). Every arithmetic operation is
+    /// the scalar one, so the bits are the same.
+    #[inline(always)]
+    fn exits_avx2(&mut self, avx2: Wide, i: usize) {
+        let zero = avx2.splat(0.0);
+        let load = |a: &[f64; N]| avx2.load(a, i);
+        let (dx, dy) = (load(&self.apex_x), load(&self.apex_y));
+        let edge_to = |j: usize| dx * load(&self.y[j]) - dy * load(&self.x[j]);
+        let e = [edge_to(0), edge_to(1), edge_to(2)];
+        let b = e.map(|e| e.gt(zero));
+        // Slot k is left out when E(d, v_{k+1}) > 0 and E(d, v_{k+2}) is
+        // not (LEFT_OUT_SLOT).
+        let m = [b[2].and_not(b[1]), b[0].and_not(b[2]), b[1].and_not(b[0])];
+        let next = |a: [_; 3]| m[0].select(a[1], m[1].select(a[2], a[0]));
+        let prev = |a: [_; 3]| m[0].select(a[2], m[1].select(a[0], a[1]));
+        let slots = |a: &[[f64; N]; 3]| [load(&a[0]), load(&a[1]), load(&a[2])];
+        let (e_next, e_prev) = (next(e), prev(e));
+        let negated = e_prev.xor(avx2.splat(-0.0));
+        let w = [next(slots(&self.edge)), negated, e_next];
+        let (zs, ss) = (slots(&self.z), slots(&self.s));
+        let z = [load(&self.apex_z), next(zs), prev(zs)];
+        let s = [load(&self.apex_s), next(ss), prev(ss)];
+        // min_f32(a, b) is `b < a ? b : a`: SSE's min(b, a).
+        let lo = z[2].min(z[1].min(z[0]));
+        let hi = z[2].max(z[1].max(z[0]));
+        let sum = w[0] + w[1] + w[2];
+        let one = avx2.splat(1.0);
+        let inv = one / sum;
+        let blend = |v: [F64x4; 3]| (w[0] * v[0] + w[1] * v[1] + w[2] * v[2]) * inv;
+        let product = e[0] * e[1] * e[2];
+        let some = m[0].or(m[1]).or(m[2]);
+        let none = some.xor(avx2.splat(f64::from_bits(u64::MAX)));
+        let alone = product.eq(zero).or(none).or(sum.eq(zero));
+        let slot = m[0].select(zero, m[1].select(one, avx2.splat(2.0)));
+        slot.store_i32(&mut self.left_out, i);
+        // The rank of the left-out vertex, as Lanes::exit_lane.
+        let ids = slots(&self.id_f);
+        let apex_id = load(&self.apex_id_f);
+        let left_out = next([ids[2], ids[0], ids[1]]);
+        let below = |id: F64x4| id.lt(left_out).and(one);
+        let rank = below(ids[0]) + below(ids[1]) + below(ids[2]) + below(apex_id);
+        rank.store_i32(&mut self.rank, i);
+        // clamp_f32(t, lo, hi) is SSE's min(hi, max(lo, t)).
+        hi.min(lo.max(blend(z).round_f32()))
+            .store_f32(&mut self.t, i);
+        blend(s).store_f32(&mut self.value, i);
+        let alone_bits = alone.bits();
+        self.alone = self.alone & !(0xf << i) | alone_bits << i;
+        // The apex takes slot k; the exit face's edges, as Face::exit.
+        let live = avx2.lane_mask(self.live >> i & 0xf);
+        let moves = alone.and_not(live);
+        let apex = [dx, dy, z[0], s[0], apex_id];
+        for j in 0..3 {
+            let take = moves.and(m[j]);
+            let before = moves.and(m[(j + 1) % 3]);
+            let arrays = [
+                &mut self.x[j],
+                &mut self.y[j],
+                &mut self.z[j],
+                &mut self.s[j],
+                &mut self.id_f[j],
+            ];
+            for (array, new) in arrays.into_iter().zip(apex) {
+                take.select(new, avx2.load_to_blend(array, i))
+                    .store(array, i);
+            }
+            let kept = before.select(negated, avx2.load_to_blend(&self.edge[j], i));
+            take.select(e_next, kept).store(&mut self.edge[j], i);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::face::tests::random_entries;
+
+    /// Random faces and apices in lanes, some lanes resting and some
+    /// through a face vertex (an exact zero left to Face::exit): every
+    /// live lane's exit and new face have the bits of Face::exit's.
+    #[test]
+    fn lanes_give_the_single_face_bits() {
+        const N: usize = 8;
+        let wides: &[bool] = if tetray_wide::detected() {
+            &[false, true]
+        } else {
+            &[false]
+        };
+        for &wide in wides {
+            compare_lanes::<N>(wide);
+        }
+    }
+
+    fn compare_lanes<const N: usize>(wide: bool) {
+        let entries = random_entries(4000);
+        let mut lanes = Lanes::<N>::new();
+        let (mut compared, mut alone) = (0, 0);
+        for (round, chunk) in entries.chunks(N).enumerate() {
+            let mut expected = Vec::new();
+            for (lane, entered) in chunk.iter().enumerate() {
+                let (face, mut apex) = (&entered.face, entered.apex);
+                if (round + lane) % 7 == 0 {
+                    // On the line through the origin and vertex 0: an
+                    // exact zero edge function.
+                    apex.x = face.x[0] * 2.0;
+                    apex.y = face.y[0] * 2.0;
+                }
+                lanes.set_face(lane, face);
+                if (round + lane) % 5 == 3 {
+                    lanes.rest(lane);
+                    expected.push(None);
+                } else {
+                    lanes.set_apex(lane, apex);
+                    let mut after = *face;
+                    let exit = after.exit(apex);
+                    expected.push(Some((exit, after)));
+                }
+            }
+            tetray_wide::run(wide, || lanes.exits(wide_exits(wide)));
+            for (lane, expected) in expected.into_iter().enumerate() {
+                let before = lanes.face(lane);
+                let Some((exit, after)) = expected else {
+                    // A resting lane keeps its face.
+                    assert_same_face(&before, &chunk[lane].face);
+                    continue;
+                };
+                alone += (lanes.alone >> lane & 1) as usize;
+                let got = lanes.exit(lane);
+                let bits =
+                    |e: Option<(usize, f32, f32)>| e.map(|(r, t, s)| (r, t.to_bits(), s.to_bits()));
+                assert_eq!(bits(got), bits(exit), "round {round} lane {lane}");
+                if exit.is_some() {
+                    assert_same_face(&lanes.face(lane), &after);
+                }
+                for j in 0..3 {
+                    assert_eq!(lanes.id_f[j][lane], f64::from(lanes.id[j][lane]));
+                }
+                compared += 1;
+            }
+        }
+        assert!(
+            compared > 2500 && alone > 300,
+            "{compared} compared, {alone} alone"
+        );
+    }
+
+    fn assert_same_face(a: &Face, b: &Face) {
+        for j in 0..3 {
+            assert_eq!(a.x[j].to_bits(), b.x[j].to_bits());
+            assert_eq!(a.y[j].to_bits(), b.y[j].to_bits());
+            assert_eq!(a.z[j].to_bits(), b.z[j].to_bits());
+            assert_eq!(a.s[j].to_bits(), b.s[j].to_bits());
+            assert_eq!(a.id[j], b.id[j]);
+            assert_eq!(a.edge[j].to_bits(), b.edge[j].to_bits());
+        }
+    }
+}
