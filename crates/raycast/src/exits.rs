@@ -44,10 +44,9 @@ pub(crate) struct Lanes<const N: usize> {
     apex_id_f: [f64; N],
     /// Bit `i` set where lane `i`'s ray is leaving its cell this round.
     live: u32,
-    /// What [`Lanes::exits`] found: the slot the exit face leaves out
-    /// (0, 1 or 2), the rank of its vertex, the distance and the scalar,
-    /// and bit `i` set where lane `i` is left to [`Face::exit`].
-    left_out: [u32; N],
+    /// What [`Lanes::exits`] found: the rank of the vertex the exit face
+    /// leaves out, the distance and the scalar, and bit `i` set where lane
+    /// `i` is left to [`Face::exit`].
     rank: [u32; N],
     t: [f32; N],
     value: [f32; N],
@@ -75,7 +74,6 @@ impl<const N: usize> Lanes<N> {
             apex_id: [0; N],
             apex_id_f: [0.0; N],
             live: 0,
-            left_out: [0; N],
             rank: [0; N],
             t: [0.0; N],
             value: [0.0; N],
@@ -166,8 +164,6 @@ impl<const N: usize> Lanes<N> {
             self.set_face(lane, &face);
             return Some(exit);
         }
-        let k = self.left_out[lane] as usize & 3;
-        self.id[k][lane] = self.apex_id[lane];
         Some((self.rank[lane] as usize, self.t[lane], self.value[lane]))
     }
 
@@ -227,7 +223,7 @@ impl<const N: usize> Lanes<N> {
         // tetray_scene::vertex_rank.
         let ids = [self.id[0][i], self.id[1][i], self.id[2][i], self.apex_id[i]];
         self.rank[i] = tetray_scene::vertex_rank(ids, ids[k]) as u32;
-        self.left_out[i] = k as u32;
+        self.id[k][i] = self.apex_id[i];
         // The apex takes slot k, as Face::exit (the point index by
         // Lanes::exit).
         self.x[k][i] = dx;
@@ -275,18 +271,19 @@ impl<const N: usize> Lanes<N> {
         let zero = avx2.splat(0.0);
         let load = |a: &[f64; N]| avx2.load(a, i);
         let (dx, dy) = (load(&self.apex_x), load(&self.apex_y));
-        let edge_to = |j: usize| dx * load(&self.y[j]) - dy * load(&self.x[j]);
-        let e = [edge_to(0), edge_to(1), edge_to(2)];
+        let slots = |a: &[[f64; N]; 3]| [load(&a[0]), load(&a[1]), load(&a[2])];
+        let (xs, ys) = (slots(&self.x), slots(&self.y));
+        let e: [F64x4; 3] = std::array::from_fn(|j| dx * ys[j] - dy * xs[j]);
         let b = e.map(|e| e.gt(zero));
         // Slot k is left out when E(d, v_{k+1}) > 0 and E(d, v_{k+2}) is
         // not (LEFT_OUT_SLOT).
         let m = [b[2].and_not(b[1]), b[0].and_not(b[2]), b[1].and_not(b[0])];
         let next = |a: [_; 3]| m[0].select(a[1], m[1].select(a[2], a[0]));
         let prev = |a: [_; 3]| m[0].select(a[2], m[1].select(a[0], a[1]));
-        let slots = |a: &[[f64; N]; 3]| [load(&a[0]), load(&a[1]), load(&a[2])];
         let (e_next, e_prev) = (next(e), prev(e));
         let negated = e_prev.xor(avx2.splat(-0.0));
-        let w = [next(slots(&self.edge)), negated, e_next];
+        let edge_next = next(slots(&self.edge));
+        let w = [edge_next, negated, e_next];
         let (zs, ss) = (slots(&self.z), slots(&self.s));
         let z = [load(&self.apex_z), next(zs), prev(zs)];
         let s = [load(&self.apex_s), next(ss), prev(ss)];
@@ -301,8 +298,6 @@ impl<const N: usize> Lanes<N> {
         let some = m[0].or(m[1]).or(m[2]);
         let none = some.xor(avx2.splat(f64::from_bits(u64::MAX)));
         let alone = product.eq(zero).or(none).or(sum.eq(zero));
-        let slot = m[0].select(zero, m[1].select(one, avx2.splat(2.0)));
-        slot.store_i32(&mut self.left_out, i);
         // The rank of the left-out vertex, as Lanes::exit_lane.
         let ids = slots(&self.id_f);
         let apex_id = load(&self.apex_id_f);
@@ -316,26 +311,59 @@ impl<const N: usize> Lanes<N> {
         blend(s).store_f32(&mut self.value, i);
         let alone_bits = alone.bits();
         self.alone = self.alone & !(0xf << i) | alone_bits << i;
-        // The apex takes slot k; the exit face's edges, as Face::exit.
         let live = avx2.lane_mask(self.live >> i & 0xf);
         let moves = alone.and_not(live);
-        let apex = [dx, dy, z[0], s[0], apex_id];
-        for j in 0..3 {
-            let take = moves.and(m[j]);
-            let before = moves.and(m[(j + 1) % 3]);
-            let arrays = [
-                &mut self.x[j],
-                &mut self.y[j],
-                &mut self.z[j],
-                &mut self.s[j],
-                &mut self.id_f[j],
+        if moves.bits() == 0xf {
+            // Every lane leaves: the exit face in the order (apex, next,
+            // prev), all slots written. That is Face::exit's face (the apex
+            // in slot k) turned cyclically: the same face, whose exits are
+            // the same, as each is found relative to the slot left out.
+            let new = [
+                [dx, next(xs), prev(xs)],
+                [dy, next(ys), prev(ys)],
+                z,
+                s,
+                [apex_id, next(ids), prev(ids)],
+                [e_next, edge_next, negated],
             ];
-            for (array, new) in arrays.into_iter().zip(apex) {
-                take.select(new, avx2.load_to_blend(array, i))
-                    .store(array, i);
+            let arrays = [
+                &mut self.x,
+                &mut self.y,
+                &mut self.z,
+                &mut self.s,
+                &mut self.id_f,
+                &mut self.edge,
+            ];
+            for (array, new) in arrays.into_iter().zip(new) {
+                for (slot, lanes) in array.iter_mut().zip(new) {
+                    lanes.store(slot, i);
+                }
             }
-            let kept = before.select(negated, avx2.load_to_blend(&self.edge[j], i));
-            take.select(e_next, kept).store(&mut self.edge[j], i);
+        } else {
+            // The apex takes slot k of the lanes that leave; the exit
+            // face's edges, as Face::exit.
+            let apex = [dx, dy, z[0], s[0], apex_id];
+            for j in 0..3 {
+                let take = moves.and(m[j]);
+                let before = moves.and(m[(j + 1) % 3]);
+                let arrays = [
+                    &mut self.x[j],
+                    &mut self.y[j],
+                    &mut self.z[j],
+                    &mut self.s[j],
+                    &mut self.id_f[j],
+                ];
+                for (array, new) in arrays.into_iter().zip(apex) {
+                    take.select(new, avx2.load_to_blend(array, i))
+                        .store(array, i);
+                }
+                let kept = before.select(negated, avx2.load_to_blend(&self.edge[j], i));
+                take.select(e_next, kept).store(&mut self.edge[j], i);
+            }
+        }
+        // The point indices as u32 again, for `opposite`.
+        for j in 0..3 {
+            avx2.load(&self.id_f[j], i).store_i32(&mut self.id[j], i);
         }
     }
 }
@@ -364,7 +392,7 @@ mod tests {
     fn compare_lanes<const N: usize>(wide: bool) {
         let entries = random_entries(4000);
         let mut lanes = Lanes::<N>::new();
-        let (mut compared, mut alone) = (0, 0);
+        let (mut compared, mut alone, mut whole) = (0, 0, 0);
         for (round, chunk) in entries.chunks(N).enumerate() {
             let mut expected = Vec::new();
             for (lane, entered) in chunk.iter().enumerate() {
@@ -387,6 +415,10 @@ mod tests {
                 }
             }
             tetray_wide::run(wide, || lanes.exits(wide_exits(wide)));
+            // Quads whose four lanes all leave (the whole faces written).
+            whole += (0..N / 4)
+                .filter(|q| lanes.live >> (4 * q) & 0xf == 0xf && lanes.alone >> (4 * q) & 0xf == 0)
+                .count();
             for (lane, expected) in expected.into_iter().enumerate() {
                 let before = lanes.face(lane);
                 let Some((exit, after)) = expected else {
@@ -400,7 +432,7 @@ mod tests {
                     |e: Option<(usize, f32, f32)>| e.map(|(r, t, s)| (r, t.to_bits(), s.to_bits()));
                 assert_eq!(bits(got), bits(exit), "round {round} lane {lane}");
                 if exit.is_some() {
-                    assert_same_face(&lanes.face(lane), &after);
+                    assert_same_face_turned(&lanes.face(lane), &after);
                 }
                 for j in 0..3 {
                     assert_eq!(lanes.id_f[j][lane], f64::from(lanes.id[j][lane]));
@@ -409,9 +441,35 @@ mod tests {
             }
         }
         assert!(
-            compared > 2500 && alone > 300,
-            "{compared} compared, {alone} alone"
+            compared > 2500 && alone > 300 && whole > 50,
+            "{compared} compared, {alone} alone, {whole} whole quads"
         );
+    }
+
+    /// `a` is `b` with its slots turned cyclically (the same face: the
+    /// wide exits put the apex in slot 0 where Face::exit puts it in the
+    /// slot left out).
+    fn assert_same_face_turned(a: &Face, b: &Face) {
+        let turned = |r: usize| {
+            let mut t = Face::EMPTY;
+            for j in 0..3 {
+                let k = (j + r) % 3;
+                (t.x[j], t.y[j], t.z[j]) = (b.x[k], b.y[k], b.z[k]);
+                (t.s[j], t.id[j], t.edge[j]) = (b.s[k], b.id[k], b.edge[k]);
+            }
+            t
+        };
+        let same = |t: &Face| {
+            (0..3).all(|j| {
+                a.x[j].to_bits() == t.x[j].to_bits()
+                    && a.y[j].to_bits() == t.y[j].to_bits()
+                    && a.z[j].to_bits() == t.z[j].to_bits()
+                    && a.s[j].to_bits() == t.s[j].to_bits()
+                    && a.id[j] == t.id[j]
+                    && a.edge[j].to_bits() == t.edge[j].to_bits()
+            })
+        };
+        assert!((0..3).any(|r| same(&turned(r))), "not the same face turned");
     }
 
     fn assert_same_face(a: &Face, b: &Face) {
