@@ -143,9 +143,9 @@ impl<const N: usize> Lanes<N> {
     }
 
     /// [`Face::exit`] of a lane given a vertex since it last rested,
-    /// after [`Lanes::exits`]: the face is moved to the exit face (its
-    /// point indices here, the rest by [`Lanes::exits`]); `None` for a
-    /// degenerate cell.
+    /// after [`Lanes::exits`], the lane's face now the exit face; `None`
+    /// for a degenerate cell. (Without the vectors, the lane's exit is
+    /// found here.)
     #[inline(always)]
     pub fn exit(&mut self, lane: usize) -> Option<(usize, f32, f32)> {
         if !self.found {
@@ -224,8 +224,7 @@ impl<const N: usize> Lanes<N> {
         let ids = [self.id[0][i], self.id[1][i], self.id[2][i], self.apex_id[i]];
         self.rank[i] = tetray_scene::vertex_rank(ids, ids[k]) as u32;
         self.id[k][i] = self.apex_id[i];
-        // The apex takes slot k, as Face::exit (the point index by
-        // Lanes::exit).
+        // The apex takes slot k, as Face::exit.
         self.x[k][i] = dx;
         self.y[k][i] = dy;
         self.z[k][i] = self.apex_z[i];
