@@ -29,11 +29,9 @@ pub(crate) struct Lanes<const N: usize> {
     z: [[f64; N]; 3],
     s: [[f64; N]; 3],
     /// Slot 3 is unused: a slot masked to two bits indexes it without a
-    /// bounds check.
+    /// bounds check. The vectors rank them as f64 (exact below 2^31, in
+    /// order).
     id: [[u32; N]; 4],
-    /// The point indices again as f64 (exact below 2^31, in order), which
-    /// the vectors rank.
-    id_f: [[f64; N]; 3],
     edge: [[f64; N]; 3],
     /// The vertex opposite each lane's face in its current cell.
     apex_x: [f64; N],
@@ -41,7 +39,6 @@ pub(crate) struct Lanes<const N: usize> {
     apex_z: [f64; N],
     apex_s: [f64; N],
     apex_id: [u32; N],
-    apex_id_f: [f64; N],
     /// Bit `i` set where lane `i`'s ray is leaving its cell this round.
     live: u32,
     /// What [`Lanes::exits`] found: the rank of the vertex the exit face
@@ -65,14 +62,12 @@ impl<const N: usize> Lanes<N> {
             z: [[0.0; N]; 3],
             s: [[0.0; N]; 3],
             id: [[0; N]; 4],
-            id_f: [[0.0; N]; 3],
             edge: [[0.0; N]; 3],
             apex_x: [0.0; N],
             apex_y: [0.0; N],
             apex_z: [0.0; N],
             apex_s: [0.0; N],
             apex_id: [0; N],
-            apex_id_f: [0.0; N],
             live: 0,
             rank: [0; N],
             t: [0.0; N],
@@ -104,7 +99,6 @@ impl<const N: usize> Lanes<N> {
             self.z[j][lane] = f64::from(face.z[j]);
             self.s[j][lane] = f64::from(face.s[j]);
             self.id[j][lane] = face.id[j];
-            self.id_f[j][lane] = f64::from(face.id[j]);
             self.edge[j][lane] = face.edge[j];
         }
     }
@@ -125,7 +119,6 @@ impl<const N: usize> Lanes<N> {
         self.apex_z[lane] = f64::from(apex.z);
         self.apex_s[lane] = f64::from(apex.s);
         self.apex_id[lane] = apex.id;
-        self.apex_id_f[lane] = f64::from(apex.id);
         self.live |= 1 << lane;
     }
 
@@ -229,7 +222,6 @@ impl<const N: usize> Lanes<N> {
         self.y[k][i] = dy;
         self.z[k][i] = self.apex_z[i];
         self.s[k][i] = self.apex_s[i];
-        self.id_f[k][i] = self.apex_id_f[i];
         self.edge[k][i] = e[next];
         self.edge[prev][i] = -e[prev];
     }
@@ -298,8 +290,9 @@ impl<const N: usize> Lanes<N> {
         let none = some.xor(avx2.splat(f64::from_bits(u64::MAX)));
         let alone = product.eq(zero).or(none).or(sum.eq(zero));
         // The rank of the left-out vertex, as Lanes::exit_lane.
-        let ids = slots(&self.id_f);
-        let apex_id = load(&self.apex_id_f);
+        let ids: [F64x4; 3] = std::array::from_fn(|j| avx2.load_u32(&self.id[j], i));
+        let apex_id = avx2.load_u32(&self.apex_id, i);
+        // Slot k's: the slot following the one before k.
         let left_out = next([ids[2], ids[0], ids[1]]);
         let below = |id: F64x4| id.lt(left_out).and(one);
         let rank = below(ids[0]) + below(ids[1]) + below(ids[2]) + below(apex_id);
@@ -322,7 +315,6 @@ impl<const N: usize> Lanes<N> {
                 [dy, next(ys), prev(ys)],
                 z,
                 s,
-                [apex_id, next(ids), prev(ids)],
                 [e_next, edge_next, negated],
             ];
             let arrays = [
@@ -330,7 +322,6 @@ impl<const N: usize> Lanes<N> {
                 &mut self.y,
                 &mut self.z,
                 &mut self.s,
-                &mut self.id_f,
                 &mut self.edge,
             ];
             for (array, new) in arrays.into_iter().zip(new) {
@@ -338,19 +329,25 @@ impl<const N: usize> Lanes<N> {
                     lanes.store(slot, i);
                 }
             }
+            let new_ids = [apex_id, next(ids), prev(ids)];
+            for (slot, lanes) in self.id.iter_mut().zip(new_ids) {
+                lanes.store_i32(slot, i);
+            }
         } else {
             // The apex takes slot k of the lanes that leave; the exit
             // face's edges, as Face::exit.
-            let apex = [dx, dy, z[0], s[0], apex_id];
+            let apex = [dx, dy, z[0], s[0]];
             for j in 0..3 {
                 let take = moves.and(m[j]);
                 let before = moves.and(m[(j + 1) % 3]);
+                // The indices as loaded above: a select and a store of
+                // another type, which never becomes a masked store.
+                take.select(apex_id, ids[j]).store_i32(&mut self.id[j], i);
                 let arrays = [
                     &mut self.x[j],
                     &mut self.y[j],
                     &mut self.z[j],
                     &mut self.s[j],
-                    &mut self.id_f[j],
                 ];
                 for (array, new) in arrays.into_iter().zip(apex) {
                     take.select(new, avx2.load_to_blend(array, i))
@@ -359,10 +356,6 @@ impl<const N: usize> Lanes<N> {
                 let kept = before.select(negated, avx2.load_to_blend(&self.edge[j], i));
                 take.select(e_next, kept).store(&mut self.edge[j], i);
             }
-        }
-        // The point indices as u32 again, for `opposite`.
-        for j in 0..3 {
-            avx2.load(&self.id_f[j], i).store_i32(&mut self.id[j], i);
         }
     }
 }
@@ -432,9 +425,6 @@ mod tests {
                 assert_eq!(bits(got), bits(exit), "round {round} lane {lane}");
                 if exit.is_some() {
                     assert_same_face_turned(&lanes.face(lane), &after);
-                }
-                for j in 0..3 {
-                    assert_eq!(lanes.id_f[j][lane], f64::from(lanes.id[j][lane]));
                 }
                 compared += 1;
             }

@@ -31,6 +31,15 @@ impl Avx2 {
         F64x4(unsafe { _mm256_loadu_pd(lanes.as_ptr()) })
     }
 
+    /// Lanes `i..i + 4` of `a`, each below 2^31, as f64 (exactly).
+    #[inline(always)]
+    pub fn load_u32(self, a: &[u32], i: usize) -> F64x4 {
+        let lanes: &[u32; 4] = a[i..i + 4].try_into().expect("four lanes");
+        // SAFETY: as `load`; the lanes are read as i32, which they equal
+        // below 2^31.
+        F64x4(unsafe { _mm256_cvtepi32_pd(_mm_loadu_si128(lanes.as_ptr().cast())) })
+    }
+
     /// [`Avx2::load`] through an address the optimizer cannot follow: a
     /// select between new lanes and these, stored back into `a`, stays a
     /// blend and a plain store. Where it sees the load and the store at
@@ -256,8 +265,11 @@ mod tests {
                     va.min(avx2.splat(1e9))
                         .max(avx2.splat(-1e9))
                         .store_i32(&mut ints, 0);
+                    let indices = [0, 1, 0x7fff_fffe, 0x7fff_ffff];
+                    let mut widened = [0.0; 4];
+                    avx2.load_u32(&indices, 0).store(&mut widened, 0);
                     let lane_masks: Vec<u32> = (0..16).map(|b| avx2.lane_mask(b).bits()).collect();
-                    (out, narrow, va.lt(vb).bits(), lane_masks, ints)
+                    (out, narrow, va.lt(vb).bits(), lane_masks, ints, widened)
                 });
                 for i in 0..4 {
                     let (p, q) = (a[i], b[i]);
@@ -286,6 +298,7 @@ mod tests {
                     assert_eq!(got.2 >> i & 1 == 1, p < q);
                 }
                 assert_eq!(got.3, (0..16).collect::<Vec<u32>>());
+                assert_eq!(got.5, [0.0, 1.0, 2_147_483_646.0, 2_147_483_647.0]);
             }
         }
     }
