@@ -39,15 +39,17 @@ pub(crate) struct Lanes<const N: usize> {
     apex_z: [f64; N],
     apex_s: [f64; N],
     apex_id: [u32; N],
-    /// Bit `i` set where lane `i`'s ray is leaving its cell this round.
-    live: u32,
+    /// 1 where lane `i`'s ray is leaving its cell this round, else 0: a
+    /// byte per lane, so that a lane's flag is one store, where a bit of a
+    /// word took a load, a shift and a store.
+    leaving: [u8; N],
     /// What [`Lanes::exits`] found: the rank of the vertex the exit face
-    /// leaves out, the distance and the scalar, and bit `i` set where lane
-    /// `i` is left to [`Face::exit`].
+    /// leaves out, the distance and the scalar, and 1 where lane `i` is
+    /// left to [`Face::exit`] (else 0).
     rank: [u32; N],
     t: [f32; N],
     value: [f32; N],
-    alone: u32,
+    alone: [u8; N],
     /// Whether [`Lanes::exits`] found the exits of all lanes (else
     /// [`Lanes::exit`] finds each).
     found: bool,
@@ -68,11 +70,11 @@ impl<const N: usize> Lanes<N> {
             apex_z: [0.0; N],
             apex_s: [0.0; N],
             apex_id: [0; N],
-            live: 0,
+            leaving: [0; N],
             rank: [0; N],
             t: [0.0; N],
             value: [0.0; N],
-            alone: 0,
+            alone: [0; N],
             found: false,
         }
     }
@@ -119,20 +121,20 @@ impl<const N: usize> Lanes<N> {
         self.apex_z[lane] = f64::from(apex.z);
         self.apex_s[lane] = f64::from(apex.s);
         self.apex_id[lane] = apex.id;
-        self.live |= 1 << lane;
+        self.leaving[lane] = 1;
     }
 
     /// Whether `lane` was given a vertex ([`Lanes::set_apex`]) since it
     /// last rested.
     #[inline(always)]
     pub fn is_leaving(&self, lane: usize) -> bool {
-        self.live >> lane & 1 != 0
+        self.leaving[lane] != 0
     }
 
     /// Marks `lane` as not leaving a cell at the next [`Lanes::exits`].
     #[inline(always)]
     pub fn rest(&mut self, lane: usize) {
-        self.live &= !(1 << lane);
+        self.leaving[lane] = 0;
     }
 
     /// [`Face::exit`] of a lane given a vertex since it last rested,
@@ -144,7 +146,7 @@ impl<const N: usize> Lanes<N> {
         if !self.found {
             self.exit_lane(lane);
         }
-        if self.alone >> lane & 1 != 0 {
+        if self.alone[lane] != 0 {
             let mut face = self.face(lane);
             let apex = Vertex {
                 x: self.apex_x[lane],
@@ -184,7 +186,7 @@ impl<const N: usize> Lanes<N> {
     /// [`Face::exit`] on the lane's slots.
     #[inline(always)]
     fn exit_lane(&mut self, i: usize) {
-        if self.live >> i & 1 == 0 {
+        if self.leaving[i] == 0 {
             return;
         }
         let (dx, dy) = (self.apex_x[i], self.apex_y[i]);
@@ -192,7 +194,7 @@ impl<const N: usize> Lanes<N> {
         let e: [f64; 3] = std::array::from_fn(|j| dx * self.y[j][i] - dy * self.x[j][i]);
         let k = LEFT_OUT_SLOT[(lanes::positive_mask([e[0], e[1], e[2], 0.0]) & 7) as usize];
         if e[0] * e[1] * e[2] == 0.0 || k == NONE {
-            self.alone |= 1 << i;
+            self.alone[i] = 1;
             return;
         }
         let k = usize::from(k & 3);
@@ -202,10 +204,10 @@ impl<const N: usize> Lanes<N> {
         let s = [self.apex_s[i], self.s[next][i], self.s[prev][i]];
         let sum = w[0] + w[1] + w[2];
         if sum == 0.0 {
-            self.alone |= 1 << i;
+            self.alone[i] = 1;
             return;
         }
-        self.alone &= !(1 << i);
+        self.alone[i] = 0;
         let lo = min_f32(min_f32(z[0], z[1]), z[2]);
         let hi = max_f32(max_f32(z[0], z[1]), z[2]);
         let inv = 1.0 / sum;
@@ -225,6 +227,24 @@ impl<const N: usize> Lanes<N> {
         self.edge[k][i] = e[next];
         self.edge[prev][i] = -e[prev];
     }
+}
+
+/// Bits 0 to 3 of `bits` as the bytes of the result, each 0 or 1 (bit `k`
+/// in byte `k`, little-endian): one multiply, its copies of the four bits
+/// at distinct positions (no carries), and a mask.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn spread_bits(bits: u32) -> u32 {
+    (bits & 0xf).wrapping_mul(0x0020_4081) & 0x0101_0101
+}
+
+/// The inverse of [`spread_bits`]: bytes each 0 or 1 (little-endian) as
+/// bits 0 to 3 of the result, by one multiply that adds the four bytes'
+/// bits into bits 28 to 31 without carries.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn gather_bits(bytes: u32) -> u32 {
+    bytes.wrapping_mul(0x1020_4080) >> 28
 }
 
 /// The token of the wide exits ([`Lanes::exits`]): where the CPU has AVX2.
@@ -301,9 +321,10 @@ impl<const N: usize> Lanes<N> {
         hi.min(lo.max(blend(z).round_f32()))
             .store_f32(&mut self.t, i);
         blend(s).store_f32(&mut self.value, i);
-        let alone_bits = alone.bits();
-        self.alone = self.alone & !(0xf << i) | alone_bits << i;
-        let live = avx2.lane_mask(self.live >> i & 0xf);
+        let alone_bytes = spread_bits(alone.bits());
+        self.alone[i..i + 4].copy_from_slice(&alone_bytes.to_le_bytes());
+        let leaving: [u8; 4] = self.leaving[i..i + 4].try_into().expect("four lanes");
+        let live = avx2.lane_mask(gather_bits(u32::from_le_bytes(leaving)));
         let moves = alone.and_not(live);
         if moves.bits() == 0xf {
             // Every lane leaves: the exit face in the order (apex, next,
@@ -409,7 +430,9 @@ mod tests {
             tetray_wide::run(wide, || lanes.exits(wide_exits(wide)));
             // Quads whose four lanes all leave (the whole faces written).
             whole += (0..N / 4)
-                .filter(|q| lanes.live >> (4 * q) & 0xf == 0xf && lanes.alone >> (4 * q) & 0xf == 0)
+                .filter(|q| {
+                    (4 * q..4 * q + 4).all(|i| lanes.leaving[i] == 1 && lanes.alone[i] == 0)
+                })
                 .count();
             for (lane, expected) in expected.into_iter().enumerate() {
                 let before = lanes.face(lane);
@@ -418,7 +441,7 @@ mod tests {
                     assert_same_face(&before, &chunk[lane].face);
                     continue;
                 };
-                alone += (lanes.alone >> lane & 1) as usize;
+                alone += usize::from(lanes.alone[lane]);
                 let got = lanes.exit(lane);
                 let bits =
                     |e: Option<(usize, f32, f32)>| e.map(|(r, t, s)| (r, t.to_bits(), s.to_bits()));
@@ -433,6 +456,18 @@ mod tests {
             compared > 2500 && alone > 300 && whole > 50,
             "{compared} compared, {alone} alone, {whole} whole quads"
         );
+    }
+
+    /// The bit-byte conversions of the vectors' masks, every pattern.
+    #[cfg(target_arch = "x86_64")]
+    #[test]
+    fn bits_spread_to_bytes_and_back() {
+        for bits in 0..16u32 {
+            let bytes = spread_bits(bits);
+            let expected: Vec<u8> = (0..4).map(|k| (bits >> k & 1) as u8).collect();
+            assert_eq!(bytes.to_le_bytes().to_vec(), expected);
+            assert_eq!(gather_bits(bytes), bits);
+        }
     }
 
     /// `a` is `b` with its slots turned cyclically (the same face: the
