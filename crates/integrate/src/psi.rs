@@ -295,15 +295,18 @@ impl PsiTable {
         let n = self.size;
         // The four nodes of each lane's cell. Cells are at most
         // `last_cell = n - 2` on both axes, so the last node read is at
-        // most `n^2 - 1`: the bound below never moves a read. Each lane's
-        // nodes come through one slice of the cell's two rows (one bound
-        // check per lane, in a plain loop that inlines).
-        let last_base = self.values.len().saturating_sub(n + 2);
+        // most `n^2 - 1`. Each lane's nodes come through one slice of the
+        // cell's two rows (one bound check per lane, in a plain loop that
+        // inlines). The start is computed in u32 (`n^2` values fit, see
+        // `PsiTable::build`), so that its sum with `n + 2` cannot overflow
+        // the index: the check is the end against the length alone.
+        let row = n as u32;
+        let (n, span) = (row as usize, row as usize + 2);
         let mut near = [[0.0f32; 2]; N];
         let mut far = [[0.0f32; 2]; N];
         for k in 0..N {
-            let base = (j[k] as usize * n + i[k] as usize).min(last_base);
-            let rows = &self.values[base..base + n + 2];
+            let base = (j[k].wrapping_mul(row).wrapping_add(i[k])) as usize;
+            let rows = &self.values[base..base + span];
             near[k] = [rows[0], rows[1]];
             far[k] = [rows[n], rows[n + 1]];
         }
