@@ -530,7 +530,7 @@ impl<I: SegmentIntegrator + ?Sized> Frame<'_, I> {
             lanes.exits(wide);
             let mut live = 0;
             for (i, (walker, _)) in slots.iter_mut().enumerate() {
-                walker.leave(cells, &mut lanes, i);
+                walker.leave(&mut lanes, i);
                 if PREFETCH {
                     walker.prefetch_next_apex(cells, &lanes, i);
                 }

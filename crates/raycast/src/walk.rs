@@ -122,6 +122,10 @@ pub(crate) struct Walker<S> {
     /// ([`crate::entries`]); otherwise the BVH is asked.
     entries: Option<EntryList>,
     tet: usize,
+    /// The neighbours of `tet` by rank (its record's `next`), copied when
+    /// its vertex is loaded: the exit reads its neighbour here instead of
+    /// indexing the records again.
+    next: [u32; 4],
     /// Distance and scalar at the exit of the step in progress.
     t_exit: f32,
     s_out: f32,
@@ -159,6 +163,7 @@ impl<S: Copy + Default> Walker<S> {
             entry_t: f32::NAN,
             entries: None,
             tet: 0,
+            next: [FINAL_EXIT; 4],
             t_exit: 0.0,
             s_out: 0.0,
             crossing: FINAL_EXIT,
@@ -242,7 +247,7 @@ impl<S: Copy + Default> Walker<S> {
         let cells = Cells::of(scene);
         self.begin::<PREFETCH, 1, I>(scene, cells, integrator, limits, lanes, 0);
         lanes.exits(None);
-        self.leave(cells, lanes, 0);
+        self.leave(lanes, 0);
         let mut segment = SampledSegment::default();
         let light = self
             .classify(integrator, &mut segment)
@@ -412,6 +417,7 @@ impl<S: Copy + Default> Walker<S> {
         }
         // Of this cell only the vertex opposite the entry face is new: the
         // XOR of the record's and the face's point indices.
+        self.next = record.next;
         let apex = lanes.opposite(lane, record.vert_xor);
         lanes.set_apex(lane, Vertex::load(cells.points, &self.projector, apex));
     }
@@ -420,7 +426,7 @@ impl<S: Copy + Default> Walker<S> {
     /// a vertex this round): where it leaves the current cell and the
     /// cell it enters.
     #[inline(always)]
-    pub fn leave<const N: usize>(&mut self, cells: Cells<'_>, lanes: &mut Lanes<N>, lane: usize) {
+    pub fn leave<const N: usize>(&mut self, lanes: &mut Lanes<N>, lane: usize) {
         if !lanes.is_leaving(lane) {
             return;
         }
@@ -434,7 +440,7 @@ impl<S: Copy + Default> Walker<S> {
         self.s_out = s_out;
         // The exit face is the one opposite the entry face's vertex it
         // leaves out, whose rank among the cell's four names the neighbour.
-        self.crossing = cells.records[self.tet].next[rank & 3];
+        self.crossing = self.next[rank & 3];
         self.phase = Phase::Crossing;
     }
 
