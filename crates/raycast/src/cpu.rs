@@ -530,11 +530,10 @@ impl<I: SegmentIntegrator + ?Sized> Frame<'_, I> {
             lanes.exits(wide);
             let mut live = 0;
             for (i, (walker, _)) in slots.iter_mut().enumerate() {
-                walker.leave(&mut lanes, i);
+                let integrate = walker.leave(&mut lanes, i, integrator, &mut batch[i]);
                 if PREFETCH {
                     walker.prefetch_next_apex(cells, &lanes, i);
                 }
-                let integrate = walker.classify(integrator, &mut batch[i]);
                 live |= u32::from(integrate) << i;
             }
             integrator.segments(&batch, live, &mut lights);

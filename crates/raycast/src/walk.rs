@@ -126,9 +126,6 @@ pub(crate) struct Walker<S> {
     /// its vertex is loaded: the exit reads its neighbour here instead of
     /// indexing the records again.
     next: [u32; 4],
-    /// Distance and scalar at the exit of the step in progress.
-    t_exit: f32,
-    s_out: f32,
     /// The record's entry across the exit face of the step in progress.
     crossing: u32,
     t_in: f32,
@@ -164,8 +161,6 @@ impl<S: Copy + Default> Walker<S> {
             entries: None,
             tet: 0,
             next: [FINAL_EXIT; 4],
-            t_exit: 0.0,
-            s_out: 0.0,
             crossing: FINAL_EXIT,
             t_in: 0.0,
             s_in: 0.0,
@@ -247,10 +242,9 @@ impl<S: Copy + Default> Walker<S> {
         let cells = Cells::of(scene);
         self.begin::<PREFETCH, 1, I>(scene, cells, integrator, limits, lanes, 0);
         lanes.exits(None);
-        self.leave(lanes, 0);
         let mut segment = SampledSegment::default();
         let light = self
-            .classify(integrator, &mut segment)
+            .leave(lanes, 0, integrator, &mut segment)
             .then(|| integrator.segment(&segment.front, &segment.back, segment.length));
         self.end(light, limits)
     }
@@ -259,8 +253,8 @@ impl<S: Copy + Default> Walker<S> {
     /// vertex of the ray's tetrahedron that its exit is found against,
     /// given to the ray's lane of `lanes` (where the face it entered
     /// through is). [`Lanes::exits`] then finds the exits of all lanes
-    /// at once, [`Walker::leave`] takes the ray's, [`Walker::classify`]
-    /// finds the step's segment and [`Walker::end`] composites its light.
+    /// at once, [`Walker::leave`] takes the ray's and finds the step's
+    /// segment, and [`Walker::end`] composites its light.
     /// A thread with many rays in flight takes each stage for all of them
     /// in turn and integrates their segments together: the stages of
     /// different rays are independent, and the processor overlaps them,
@@ -293,7 +287,7 @@ impl<S: Copy + Default> Walker<S> {
     }
 
     /// The last stage of [`Walker::advance`]: composites the light of the
-    /// step's segment (`None` when [`Walker::classify`] found none), stops
+    /// step's segment (`None` when [`Walker::leave`] found none), stops
     /// the ray once it is opaque enough, and moves it across the exit face.
     /// Returns whether the ray goes on.
     #[inline(always)]
@@ -422,26 +416,33 @@ impl<S: Copy + Default> Walker<S> {
         lanes.set_apex(lane, Vertex::load(cells.points, &self.projector, apex));
     }
 
-    /// Takes the exit [`Lanes::exits`] found for the ray (if it was given
-    /// a vertex this round): where it leaves the current cell and the
-    /// cell it enters.
+    /// The second stage of [`Walker::advance`]: takes the exit
+    /// [`Lanes::exits`] found for the ray (if it was given a vertex this
+    /// round), where it leaves the current cell and the cell it enters,
+    /// classifies the scalar there and writes the step's segment, if it
+    /// has positive length in front of the eye; returns whether it has.
     #[inline(always)]
-    pub fn leave<const N: usize>(&mut self, lanes: &mut Lanes<N>, lane: usize) {
+    pub fn leave<const N: usize, I: SegmentIntegrator<Sample = S> + ?Sized>(
+        &mut self,
+        lanes: &mut Lanes<N>,
+        lane: usize,
+        integrator: &I,
+        segment: &mut SampledSegment<S>,
+    ) -> bool {
         if !lanes.is_leaving(lane) {
-            return;
+            return false;
         }
         let Some((rank, t_exit, s_out)) = lanes.exit(lane) else {
             // Only a degenerate (flat) tetrahedron has no exit face.
             self.counters.walk_failure = true;
             self.phase = Phase::Done;
-            return;
+            return false;
         };
-        self.t_exit = t_exit;
-        self.s_out = s_out;
         // The exit face is the one opposite the entry face's vertex it
         // leaves out, whose rank among the cell's four names the neighbour.
         self.crossing = self.next[rank & 3];
         self.phase = Phase::Crossing;
+        self.classify(integrator, t_exit, s_out, segment)
     }
 
     /// Starts loading the point the ray's next step projects first: the
@@ -469,26 +470,25 @@ impl<S: Copy + Default> Walker<S> {
         }
     }
 
-    /// The second stage of [`Walker::advance`]: classifies the scalar at
-    /// the exit found by [`Walker::begin`] and writes the step's segment,
-    /// if it has positive length in front of the eye; returns whether it
-    /// has.
+    /// Classifies the scalar `s_out` at the step's exit, at distance
+    /// `t_exit`, and writes the step's segment (see [`Walker::leave`]).
     #[inline(always)]
-    pub fn classify<I: SegmentIntegrator<Sample = S> + ?Sized>(
+    fn classify<I: SegmentIntegrator<Sample = S> + ?Sized>(
         &mut self,
         integrator: &I,
+        t_exit: f32,
+        s_out: f32,
         segment: &mut SampledSegment<S>,
     ) -> bool {
-        if self.phase != Phase::Crossing {
-            return false;
-        }
-        let (t_exit, s_out) = (self.t_exit, self.s_out);
         let (t_in, s_in) = (self.t_in, self.s_in);
         let sample_in = self.sample_in;
         let t_out = max_f32(t_exit, t_in);
         let sample_out = integrator.sample_near(s_out, &sample_in);
         let mut integrate = false;
-        if t_out > t_in && t_out > 0.0 {
+        // `t_out > t_in && t_out > 0` in one comparison (both false for a
+        // NaN).
+        let near = max_f32(t_in, 0.0);
+        if t_out > near {
             // Clip at the ray origin; the scalar is linear along the
             // segment, so interpolating it there is exact.
             let front = if t_in < 0.0 {
@@ -499,7 +499,7 @@ impl<S: Copy + Default> Walker<S> {
             *segment = SampledSegment {
                 front,
                 back: sample_out,
-                length: t_out - max_f32(t_in, 0.0),
+                length: t_out - near,
             };
             integrate = true;
         }
