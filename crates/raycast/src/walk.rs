@@ -228,8 +228,9 @@ impl<S: Copy + Default> Walker<S> {
         }
     }
 
-    /// One BVH query or one tetrahedron, its segment integrated alone;
-    /// returns whether the ray goes on. `lanes` holds the ray's face
+    /// One tetrahedron (after a BVH query where the ray is between
+    /// entries; none where the query finds none), its segment integrated
+    /// alone; returns whether the ray goes on. `lanes` holds the ray's face
     /// between calls.
     #[inline(always)]
     pub fn advance<const PREFETCH: bool, I: SegmentIntegrator<Sample = S> + ?Sized>(
@@ -249,8 +250,9 @@ impl<S: Copy + Default> Walker<S> {
         self.end(light, limits)
     }
 
-    /// The first stage of [`Walker::advance`]: one BVH query, or the
-    /// vertex of the ray's tetrahedron that its exit is found against,
+    /// The first stage of [`Walker::advance`]: the vertex of the ray's
+    /// tetrahedron that its exit is found against (after a BVH query, of
+    /// the tetrahedron entered),
     /// given to the ray's lane of `lanes` (where the face it entered
     /// through is). [`Lanes::exits`] then finds the exits of all lanes
     /// at once, [`Walker::leave`] takes the ray's and finds the step's
@@ -281,7 +283,15 @@ impl<S: Copy + Default> Walker<S> {
         lanes.rest(lane);
         match self.phase {
             Phase::Walking => self.apex::<PREFETCH, N>(cells, limits, lanes, lane),
-            Phase::Entering => self.enter(scene, integrator, limits, lanes, lane),
+            Phase::Entering => {
+                // The entered cell's vertex in the same stage: the ray's
+                // lane leaves it at the next exits, where it would
+                // otherwise rest a round.
+                self.enter(scene, integrator, limits, lanes, lane);
+                if self.phase == Phase::Walking {
+                    self.apex::<PREFETCH, N>(cells, limits, lanes, lane);
+                }
+            }
             Phase::Crossing | Phase::Done => {}
         }
     }
