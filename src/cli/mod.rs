@@ -1,4 +1,8 @@
 //! The command line: argument definitions and dispatch.
+//!
+//! The arguments' doc comments are their `--help` text, written for a
+//! terminal (`<name>`, `[:SORT]`), not as rustdoc markup.
+#![allow(rustdoc::invalid_html_tags, rustdoc::broken_intra_doc_links)]
 
 mod animate;
 mod args;

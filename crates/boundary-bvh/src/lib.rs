@@ -1,7 +1,7 @@
 //! A BVH (obvhs) over the boundary faces of a tetrahedral mesh, answering
 //! "which boundary face does this ray enter the mesh through first, after t".
 //!
-//! Every query decides crossings with the shared [`watertight`] predicate, so
+//! Every query decides crossings with the shared `watertight` predicate, so
 //! the BVH, the brute-force scan and the GPU layout's CPU twin agree bit for
 //! bit, and agree with the ray caster about which faces a ray crosses.
 //!

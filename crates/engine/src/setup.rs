@@ -76,8 +76,8 @@ pub struct Setup {
     pub integrator_time: Duration,
 }
 
-/// [`prepare`] for a mesh already loaded (with its image grid when it is
-/// image data).
+/// [`prepare`](crate::prepare()) for a mesh already loaded (with its image
+/// grid when it is image data).
 pub fn prepare_mesh(
     input: MeshInput,
     image: Option<ImageGrid>,

@@ -166,7 +166,7 @@ fn even_moments(b: f64, c: f64, zeta: f64) -> [f64; 5] {
 
 /// Eq. 3.28 weights rounded to f32 for one channel: [`exact_zeta_psi`],
 /// except that nearly constant attenuation (the common segment of a fine
-/// mesh) takes [`psi_near_constant`], whose error is far below f32's
+/// mesh) takes `psi_near_constant`, whose error is far below f32's
 /// rounding.
 #[inline]
 pub fn exact_weights(tau_d_back: f32, tau_d_front: f32) -> Weights {

@@ -11,7 +11,7 @@
 //! | linear luminance and opacity (5.3.2) | [`opacity`] | linear opacity |
 //! | full pre-integration (Roettger/Engel/Schulze) | [`preintegrated`] | linear attenuation |
 //! | Riemann sum (eq. 3.13) | [`ScalarIntegrator`] | the transfer function, sampled |
-//! | f64 adaptive quadrature (eq. 2.2) | [`reference`] | either |
+//! | f64 adaptive quadrature (eq. 2.2) | [`reference`](mod@reference) | either |
 //!
 //! Conventions: a segment runs from its back (far from the eye) to its
 //! front; its light is what it emits towards the eye (premultiplied) and its

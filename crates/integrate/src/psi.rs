@@ -28,7 +28,7 @@ const EFOLDS_CUTOFF: f64 = 60.0;
 ///
 /// The exponent `E(x) = -(b x + c x^2)`, `c = (a - b) / 2`, decreases
 /// monotonically on `[0, 1]` (`E'(x) = -(b (1 - x) + a x)`), so the interval
-/// is cut where `E` crosses each multiple of [`EFOLDS_PER_PANEL`] and each
+/// is cut where `E` crosses each multiple of `EFOLDS_PER_PANEL` and each
 /// piece gets a Gauss-Legendre panel: accurate however steep the integrand.
 pub fn psi(a: f64, b: f64) -> f64 {
     if a.is_nan() || b.is_nan() || a < 0.0 || b < 0.0 {
@@ -255,7 +255,7 @@ impl PsiTable {
     }
 
     /// Bilinear lookup by `(tau_b D, tau_f D)`, both `>= 0`: the bits of
-    /// [`PsiTable::bilinear`] at [`GammaSpacing::coord_of_tau_d`].
+    /// `PsiTable::bilinear` at [`GammaSpacing::coord_of_tau_d`].
     #[inline(always)]
     pub fn lookup(&self, tau_d_back: f32, tau_d_front: f32) -> f32 {
         self.interpolate(self.coord(tau_d_back), self.coord(tau_d_front))

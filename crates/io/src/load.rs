@@ -409,7 +409,7 @@ pub fn load_image_grid(path: &Path, opts: &LoadOptions) -> Result<vtk::ImageGrid
 /// both what it is: the mesh [`load`] makes of it, and its regular grid.
 ///
 /// # Errors
-/// As [`load`], and [`vtk::VtkError::Invalid`] for a file that is not a
+/// As [`load`], and a [`vtk::VtkError::Cell`] error for a file that is not a
 /// single-piece axis-aligned image.
 pub fn load_image_data(
     path: &Path,

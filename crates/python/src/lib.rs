@@ -7,7 +7,7 @@
 //!
 //! Errors: an [`EngineError`] about a file becomes `OSError`, any other
 //! `ValueError`, with the engine's message. Loads and renders run with the
-//! GIL released ([`Python::detach`]) and under [`guard`], which turns a
+//! GIL released ([`Python::detach`]) and under `guard`, which turns a
 //! panic into a `RuntimeError` rather than unwinding into the interpreter.
 
 mod convert;

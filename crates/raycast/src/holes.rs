@@ -40,8 +40,9 @@ impl Holes {
     }
 
     /// Finds the left-out tetrahedra of `scene` that `ray` crosses, the
-    /// first [`MAX_OVERLAP_CROSSINGS`] in the scene's order; returns
-    /// whether it crosses more (the ray's overflow).
+    /// first [`MAX_OVERLAP_CROSSINGS`](tetray_scene::MAX_OVERLAP_CROSSINGS)
+    /// in the scene's order; returns whether it crosses more (the ray's
+    /// overflow).
     pub fn find(&mut self, scene: &Scene, ray: &RayFrame, projector: &Projector) -> bool {
         self.found = true;
         let overlaps = scene.overlaps();

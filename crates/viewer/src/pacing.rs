@@ -44,7 +44,7 @@ impl Pacer {
     }
 
     /// Folds in a batch of `rays` that took `elapsed`: the next batch is
-    /// `rays * budget / elapsed`, within [`MAX_STEP`] of this one.
+    /// `rays * budget / elapsed`, within `MAX_STEP` of this one.
     pub fn record(&mut self, rays: u64, elapsed: Duration) {
         if rays == 0 {
             return;

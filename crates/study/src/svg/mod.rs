@@ -1,4 +1,4 @@
-//! A small SVG plotting module: line charts ([`line`]) and heat maps
+//! A small SVG plotting module: line charts ([`line`](mod@line)) and heat maps
 //! ([`heat`]), each figure one or more titled panels with labelled axes,
 //! ticks and a legend or colour bar. SVG text is drawn by the viewer's
 //! fonts, so nothing here needs a font file.
