@@ -251,11 +251,11 @@ impl<S: Copy + Default> Walker<S> {
     }
 
     /// The first stage of [`Walker::advance`]: the vertex of the ray's
-    /// tetrahedron that its exit is found against (after a BVH query, of
-    /// the tetrahedron entered),
-    /// given to the ray's lane of `lanes` (where the face it entered
-    /// through is). [`Lanes::exits`] then finds the exits of all lanes
-    /// at once, [`Walker::leave`] takes the ray's and finds the step's
+    /// tetrahedron that its exit is found against, given to the ray's lane
+    /// of `lanes` (where the face it entered through is); a ray between
+    /// entries first asks the BVH, and takes the vertex of the tetrahedron
+    /// it enters. [`Lanes::exits`] then finds the exits of all lanes at
+    /// once, [`Walker::leave`] takes the ray's and finds the step's
     /// segment, and [`Walker::end`] composites its light.
     /// A thread with many rays in flight takes each stage for all of them
     /// in turn and integrates their segments together: the stages of
