@@ -10,7 +10,7 @@ use tetray_core::Camera;
 use tetray_mesh::synthetic::{
     CellSplit, ScalarSpec, add_field, box_grid, hollow_box, jittered_box, two_boxes,
 };
-use tetray_raycast::{RenderOptions, RenderStats, render_cpu};
+use tetray_raycast::{RenderOptions, RenderStats, render_cpu, trace_pixel};
 use tetray_scene::Scene;
 
 const SIZE: u32 = 24;
@@ -227,6 +227,25 @@ fn step_bound_stops_rays_and_is_counted() {
     let full = render_cpu(&scene, &camera, &LengthAndScalar, &options()).unwrap();
     assert_eq!(full.stats.counters.steps_bound_hits, 0);
     assert!(full.stats.counters.segments > out.stats.counters.segments);
+    // The middle pixel's ray, alone: its steps count the one refused past
+    // the bound; without the bound, every step it takes.
+    let middle = |opts: &RenderOptions| {
+        let (w, h) = (opts.width / 2, opts.height / 2);
+        trace_pixel(&scene, &camera, &LengthAndScalar, opts, w, h)
+            .unwrap()
+            .1
+    };
+    let bounded = middle(&opts);
+    assert!(bounded.step_bound_hit);
+    // (A step through an edge has a segment of no length, not counted.)
+    assert_eq!(bounded.steps, 3);
+    assert!((1..=2).contains(&bounded.segments), "{bounded:?}");
+    let whole = middle(&options());
+    assert!(!whole.step_bound_hit);
+    assert!(
+        whole.steps > 3 && whole.steps >= whole.segments,
+        "{whole:?}"
+    );
 }
 
 #[test]
