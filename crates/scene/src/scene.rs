@@ -122,13 +122,7 @@ impl Scene {
         if mesh.tets.is_empty() {
             return Err(SceneError::Empty);
         }
-        if mesh.tets.len() >= 1 << 30 {
-            return Err(SceneError::TooManyTets(mesh.tets.len()));
-        }
-        // Point indices below 2^31 rank with one signed compare.
-        if mesh.points.len() > 1 << 31 {
-            return Err(SceneError::TooManyPoints(mesh.points.len()));
-        }
+        check_sizes(mesh.tets.len(), mesh.points.len())?;
         if topology.neighbors.len() != mesh.tets.len() {
             return Err(SceneError::TopologyMismatch {
                 topology: topology.neighbors.len(),
@@ -367,6 +361,23 @@ impl Scene {
     }
 }
 
+/// Checks that the walk can index `tets` tetrahedra and `points` points.
+///
+/// # Errors
+/// [`SceneError::TooManyTets`] from 2^30 tetrahedra on (the limit of the
+/// face-neighbour graph, `tetray_mesh::Topology::build`),
+/// [`SceneError::TooManyPoints`] past 2^31 points (point indices below
+/// 2^31 rank with one signed compare).
+fn check_sizes(tets: usize, points: usize) -> Result<(), SceneError> {
+    if tets >= 1 << 30 {
+        return Err(SceneError::TooManyTets(tets));
+    }
+    if points > 1 << 31 {
+        return Err(SceneError::TooManyPoints(points));
+    }
+    Ok(())
+}
+
 /// Checks every tetrahedron of `tets` refers to one of `points` points.
 ///
 /// # Errors
@@ -455,6 +466,24 @@ fn check_boundary_faces(mesh: &TetMesh, topology: &Topology) -> Result<(), Scene
 mod tests {
     use super::*;
     use tetray_mesh::synthetic::{CellSplit, ScalarSpec, add_field, jittered_box};
+
+    /// The largest mesh the walk indexes passes, one more tetrahedron or
+    /// point is refused with its count (no mesh that large is built here).
+    #[test]
+    fn sizes_past_the_walk_indices_are_refused() {
+        let (tets, points) = ((1 << 30) - 1, 1 << 31);
+        assert!(check_sizes(tets, points).is_ok());
+        assert!(matches!(
+            check_sizes(tets + 1, points),
+            Err(SceneError::TooManyTets(n)) if n == 1 << 30
+        ));
+        assert!(matches!(
+            check_sizes(tets, points + 1),
+            Err(SceneError::TooManyPoints(n)) if n == points + 1
+        ));
+        let message = check_sizes(0, points + 1).unwrap_err().to_string();
+        assert!(message.contains("2147483649 points"), "{message}");
+    }
 
     /// Switching the active field gives the scene a fresh build would.
     #[test]
