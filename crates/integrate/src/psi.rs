@@ -292,7 +292,6 @@ impl PsiTable {
         }
         let (i, fx) = cells(&x, self.last_cell);
         let (j, fy) = cells(&y, self.last_cell);
-        let n = self.size;
         // The four nodes of each lane's cell. Cells are at most
         // `last_cell = n - 2` on both axes, so the last node read is at
         // most `n^2 - 1`. Each lane's nodes come through one slice of the
@@ -300,12 +299,12 @@ impl PsiTable {
         // inlines). The start is computed in u32 (`n^2` values fit, see
         // `PsiTable::build`), so that its sum with `n + 2` cannot overflow
         // the index: the check is the end against the length alone.
-        let row = n as u32;
+        let row = self.size as u32;
         let (n, span) = (row as usize, row as usize + 2);
         let mut near = [[0.0f32; 2]; N];
         let mut far = [[0.0f32; 2]; N];
         for k in 0..N {
-            let base = (j[k].wrapping_mul(row).wrapping_add(i[k])) as usize;
+            let base = j[k].wrapping_mul(row).wrapping_add(i[k]) as usize;
             let rows = &self.values[base..base + span];
             near[k] = [rows[0], rows[1]];
             far[k] = [rows[n], rows[n + 1]];
