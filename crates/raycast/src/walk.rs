@@ -413,9 +413,9 @@ impl<S: Copy + Default> Walker<S> {
             let last = cells.records.len() - 1;
             for &next in &record.next {
                 let index = (next as usize).min(last);
-                let record = &cells.records[index];
-                tetray_memory::prefetch(&record.vert_xor);
-                tetray_memory::prefetch(&record.next[3]);
+                let candidate = &cells.records[index];
+                tetray_memory::prefetch(&candidate.vert_xor);
+                tetray_memory::prefetch(&candidate.next[3]);
             }
         }
         let counters = &mut self.counters;
