@@ -8,6 +8,7 @@ use obvhs::bvh2::builder::build_bvh2_from_tris;
 use obvhs::triangle::Triangle;
 use tetray_mesh::{TetMesh, Topology};
 
+use crate::bvh4::Bvh4;
 use crate::{BuildPreset, BvhError};
 
 /// A BVH2 over the boundary faces of one mesh, with the face vertices copied
@@ -15,6 +16,8 @@ use crate::{BuildPreset, BvhError};
 #[derive(Clone)]
 pub struct BoundaryBvh {
     pub(crate) bvh: Bvh2,
+    /// `bvh` collapsed to four children per node, for the CPU's queries.
+    pub(crate) bvh4: Bvh4,
     /// Per primitive slot of `bvh` (what leaves index): the boundary face.
     /// With spatial pre-splits a face can own several slots.
     pub(crate) prim_faces: Vec<u32>,
@@ -117,6 +120,7 @@ impl BoundaryBvh {
             build_time,
         };
         Ok(BoundaryBvh {
+            bvh4: Bvh4::collapse(&bvh)?,
             bvh,
             face_vertices: faces.iter().map(|f| f.vertices).collect(),
             prim_faces,

@@ -8,12 +8,14 @@
 //! - [`BoundaryBvh::build`] builds over `Topology::boundary_faces` with one of
 //!   the obvhs presets ([`BuildPreset`]);
 //! - [`BoundaryBvh::first_entry`] / [`brute_force_first_entry`]: the nearest
-//!   face the ray enters through in `[t_min, t_max]`;
+//!   face the ray enters through in `[t_min, t_max]` (the first through the
+//!   tree collapsed to four children per node);
 //! - [`BoundaryBvh::flatten`]: a `#[repr(C)]` node array for the GPU kernel,
 //!   with [`FlatBvh::first_entry`] as its CPU twin.
 
 mod brute;
 mod build;
+mod bvh4;
 mod flat;
 mod hull;
 mod preset;
@@ -67,6 +69,8 @@ pub enum BvhError {
          use the CPU traversal or a different build preset"
     )]
     TooDeepForGpu { depth: u32, limit: u32 },
+    #[error("a BVH leaf holds {prims} faces, more than the wide tree's 65535")]
+    LeafTooLarge { prims: u32 },
     #[error("unknown BVH build preset {0:?} (expected one of: {names})", names = BuildPreset::names())]
     UnknownPreset(String),
 }

@@ -23,7 +23,7 @@
 //! `PAD_REL = 2^-16 = 128 eps` covers all of this four times over, and costs
 //! nothing measurable: cells are far larger than `1e-5` of the scene.
 
-use glam::{Vec3, Vec3A};
+use glam::{Vec3, Vec4};
 
 /// Relative box padding, see the module documentation.
 pub(crate) const PAD_REL: f32 = 1.0 / 65536.0;
@@ -43,16 +43,18 @@ pub(crate) struct RaySlab {
     /// ray by under `1e-38 t`, far below the padding for any `t` at which a
     /// face can be crossed (`|t| <= 2 S`).
     parallel: [bool; 3],
-    /// The same quantities as vectors, for [`RaySlab::entry_lanes`].
-    lanes: Option<SlabLanes>,
+    /// The same quantities in four lanes each, for
+    /// [`RaySlab::entry_four`].
+    four: Option<SlabFour>,
 }
 
-/// A ray that moves along every axis, prepared for the three slabs at once.
+/// A ray that moves along every axis, prepared for one slab of four boxes
+/// at once: per axis, the coordinate in every lane.
 #[derive(Debug, Clone, Copy)]
-struct SlabLanes {
-    origin_plus_pad: Vec3A,
-    origin_minus_pad: Vec3A,
-    inv_dir: Vec3A,
+struct SlabFour {
+    origin_plus_pad: [Vec4; 3],
+    origin_minus_pad: [Vec4; 3],
+    inv_dir: [Vec4; 3],
 }
 
 impl RaySlab {
@@ -65,7 +67,7 @@ impl RaySlab {
             origin_minus_pad: (origin - pad).to_array(),
             inv_dir: [0.0; 3],
             parallel: [false; 3],
-            lanes: None,
+            four: None,
         };
         for axis in 0..3 {
             let inv = 1.0 / dir[axis];
@@ -73,33 +75,52 @@ impl RaySlab {
             slab.inv_dir[axis] = if inv.is_finite() { inv } else { 0.0 };
         }
         if !slab.parallel.contains(&true) {
-            slab.lanes = Some(SlabLanes {
-                origin_plus_pad: slab.origin_plus_pad.into(),
-                origin_minus_pad: slab.origin_minus_pad.into(),
-                inv_dir: slab.inv_dir.into(),
+            slab.four = Some(SlabFour {
+                origin_plus_pad: slab.origin_plus_pad.map(Vec4::splat),
+                origin_minus_pad: slab.origin_minus_pad.map(Vec4::splat),
+                inv_dir: slab.inv_dir.map(Vec4::splat),
             });
         }
         slab
     }
 
-    /// [`RaySlab::entry`] with the three axes as one vector operation
-    /// (where the ray moves along all three; the per-axis test otherwise).
-    /// The distance is the same number (`+0` and `-0` aside, which compare
-    /// equal), so a traversal prunes and orders its boxes as with `entry`.
+    /// [`RaySlab::entry`] for four boxes, given per axis as four lanes of
+    /// minima and maxima: bit `i` of the mask is set where box `i` is
+    /// entered within `[t_lo, t_hi]`, and lane `i` of the vector is then
+    /// `entry`'s distance for it (the same number, `+0` and `-0` aside).
+    /// One vector operation per axis and bound where the ray moves along
+    /// all three axes; the per-axis test box by box otherwise.
     #[inline(always)]
-    pub(crate) fn entry_lanes(&self, min: Vec3A, max: Vec3A, t_lo: f32, t_hi: f32) -> Option<f32> {
-        let Some(lanes) = &self.lanes else {
-            return self.entry(min.to_array(), max.to_array(), t_lo, t_hi);
+    pub(crate) fn entry_four(
+        &self,
+        min: &[Vec4; 3],
+        max: &[Vec4; 3],
+        t_lo: f32,
+        t_hi: f32,
+    ) -> (u32, Vec4) {
+        let Some(four) = &self.four else {
+            let mut mask = 0;
+            let mut near = [0.0; 4];
+            for (lane, t) in near.iter_mut().enumerate() {
+                let corner = |c: &[Vec4; 3]| [c[0][lane], c[1][lane], c[2][lane]];
+                if let Some(entry) = self.entry(corner(min), corner(max), t_lo, t_hi) {
+                    mask |= 1 << lane;
+                    *t = entry;
+                }
+            }
+            return (mask, Vec4::from_array(near));
         };
-        let t0 = (min - lanes.origin_plus_pad) * lanes.inv_dir;
-        let t1 = (max - lanes.origin_minus_pad) * lanes.inv_dir;
-        // t0 and t1 are finite, so the vector minimum and maximum pick what
-        // `entry`'s comparisons pick.
-        let lo = t0.min(t1).max_element();
-        let hi = t0.max(t1).min_element();
-        let near = if lo > t_lo { lo } else { t_lo };
-        let far = if hi < t_hi { hi } else { t_hi };
-        if near <= far { Some(near) } else { None }
+        let mut near = Vec4::splat(t_lo);
+        let mut far = Vec4::splat(t_hi);
+        for axis in 0..3 {
+            let t0 = (min[axis] - four.origin_plus_pad[axis]) * four.inv_dir[axis];
+            let t1 = (max[axis] - four.origin_minus_pad[axis]) * four.inv_dir[axis];
+            // Finite lanes (see `entry`): the lane-wise minimum and maximum
+            // pick what `entry`'s comparisons pick, in any order.
+            near = near.max(t0.min(t1));
+            far = far.min(t0.max(t1));
+        }
+        (near.cmple(far).bitmask(), near)
     }
 
     /// The distance at which the ray enters the padded box `[min, max]`, if
@@ -178,11 +199,10 @@ mod tests {
         );
     }
 
-    /// The vector test gives the per-axis test's answer for random boxes,
-    /// rays and ranges (and the per-axis test itself for axis rays).
+    /// The four-lane test gives the per-axis test's answer box by box.
     #[test]
-    fn lanes_agree_with_the_per_axis_test() {
-        let mut state = 0x9e37_79b9u32;
+    fn four_boxes_at_once_agree_with_the_per_axis_test() {
+        let mut state = 0x2545_f491u32;
         let mut unit = || {
             state ^= state << 13;
             state ^= state >> 17;
@@ -190,16 +210,20 @@ mod tests {
             state as f32 / u32::MAX as f32 * 2.0 - 1.0
         };
         let mut hits = 0;
-        for i in 0..20_000 {
+        for i in 0..5_000 {
             let origin = Vec3::new(unit(), unit(), unit()) * 3.0;
-            // Aimed near the boxes, so that about half are hit.
             let mut dir = Vec3::new(unit(), unit(), unit()) * 1.2 - origin;
             if i % 10 == 0 {
                 dir[i / 10 % 3] = 0.0;
             }
-            let a = Vec3::new(unit(), unit(), unit());
-            let b = Vec3::new(unit(), unit(), unit());
-            let (min, max) = (a.min(b), a.max(b));
+            let (mut min, mut max) = ([Vec4::ZERO; 3], [Vec4::ZERO; 3]);
+            for lane in 0..4 {
+                for axis in 0..3 {
+                    let (a, b) = (unit(), unit());
+                    min[axis][lane] = a.min(b);
+                    max[axis][lane] = a.max(b);
+                }
+            }
             let t_lo = if i % 3 == 0 {
                 f32::NEG_INFINITY
             } else {
@@ -211,13 +235,14 @@ mod tests {
                 t_lo.max(-1.0) + 4.0 * unit().abs()
             };
             let slab = RaySlab::new(origin, dir, 1.0);
-            let scalar = slab.entry(min.to_array(), max.to_array(), t_lo, t_hi);
-            let lanes = slab.entry_lanes(min.into(), max.into(), t_lo, t_hi);
-            assert_eq!(
-                scalar, lanes,
-                "{origin} {dir} [{min}, {max}] [{t_lo}, {t_hi}]"
-            );
-            hits += usize::from(scalar.is_some());
+            let (mask, near) = slab.entry_four(&min, &max, t_lo, t_hi);
+            for lane in 0..4 {
+                let corner = |c: &[Vec4; 3]| [c[0][lane], c[1][lane], c[2][lane]];
+                let want = slab.entry(corner(&min), corner(&max), t_lo, t_hi);
+                let got = (mask >> lane & 1 == 1).then_some(near[lane]);
+                assert_eq!(got, want, "{origin} {dir} lane {lane} [{t_lo}, {t_hi}]");
+                hits += usize::from(want.is_some());
+            }
         }
         assert!(hits > 1_000 && hits < 19_000, "{hits} boxes hit");
     }

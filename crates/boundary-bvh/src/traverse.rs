@@ -1,4 +1,5 @@
-//! `first_entry`: nearest-first traversal of the obvhs BVH2 nodes.
+//! `first_entry`: nearest-first traversal of the wide tree
+//! ([`crate::bvh4`]) collapsed from the obvhs BVH2.
 
 use glam::Vec3;
 
@@ -7,45 +8,55 @@ use crate::slab::RaySlab;
 use crate::{EntryHit, is_better, query_is_valid};
 use tetray_core::watertight::{RayFrame, entry_distance};
 
-/// Inline stack capacity. Traversal descends into the nearer child and
-/// pushes the farther one, so at most one entry per inner node of the current
-/// root-to-node path is pending: the stack never holds more than the tree
-/// depth. PLOC trees over mesh boundaries are ~2-3 log2(faces) deep (about 40
-/// for the 50k faces of the Oxygen Post); deeper trees use a heap stack.
+/// Inline stack capacity. Traversal descends into the nearest hit child
+/// and pushes the others, so at most three entries per node of the current
+/// root-to-node path are pending ([`crate::bvh4::Bvh4::stack_bound`]).
+/// PLOC trees over mesh boundaries are ~2-3 log2(faces) binary levels deep,
+/// half as many wide ones (about 20 for the 50k faces of the Oxygen Post);
+/// deeper trees use a heap stack.
 const INLINE_STACK: usize = 64;
 
-/// Pending subtrees with the distance at which the ray enters their box.
+/// A subtree not yet visited: a wide node (`count` 0) or a leaf's
+/// primitive slots, with the distance at which the ray enters its box.
+#[derive(Clone, Copy)]
+struct Pending {
+    index: u32,
+    count: u32,
+    t_enter: f32,
+}
+
+/// Pending subtrees, nearest on top.
 trait NodeStack {
-    fn push(&mut self, node: u32, t_enter: f32);
-    fn pop(&mut self) -> Option<(u32, f32)>;
+    fn push(&mut self, pending: Pending);
+    fn pop(&mut self) -> Option<Pending>;
 }
 
 struct ArrayStack {
-    items: [(u32, f32); INLINE_STACK],
+    items: [Pending; INLINE_STACK],
     len: usize,
 }
 
 impl NodeStack for ArrayStack {
     #[inline(always)]
-    fn push(&mut self, node: u32, t_enter: f32) {
-        // Cannot overflow: only used when the tree depth is <= INLINE_STACK.
-        self.items[self.len] = (node, t_enter);
+    fn push(&mut self, pending: Pending) {
+        // Cannot overflow: only used when the stack bound is <= INLINE_STACK.
+        self.items[self.len] = pending;
         self.len += 1;
     }
     #[inline(always)]
-    fn pop(&mut self) -> Option<(u32, f32)> {
+    fn pop(&mut self) -> Option<Pending> {
         self.len = self.len.checked_sub(1)?;
         Some(self.items[self.len])
     }
 }
 
-impl NodeStack for Vec<(u32, f32)> {
+impl NodeStack for Vec<Pending> {
     #[inline(always)]
-    fn push(&mut self, node: u32, t_enter: f32) {
-        Vec::push(self, (node, t_enter));
+    fn push(&mut self, pending: Pending) {
+        Vec::push(self, pending);
     }
     #[inline(always)]
-    fn pop(&mut self) -> Option<(u32, f32)> {
+    fn pop(&mut self) -> Option<Pending> {
         Vec::pop(self)
     }
 }
@@ -110,78 +121,79 @@ impl BoundaryBvh {
             skip,
             best: None,
         };
-        if self.stats.max_depth as usize <= INLINE_STACK {
+        let bound = self.bvh4.stack_bound();
+        if bound <= INLINE_STACK {
             let mut stack = ArrayStack {
-                items: [(0, 0.0); INLINE_STACK],
+                items: [Pending {
+                    index: 0,
+                    count: 0,
+                    t_enter: 0.0,
+                }; INLINE_STACK],
                 len: 0,
             };
             self.walk(&mut search, &mut stack);
         } else {
-            let mut stack = Vec::with_capacity(self.stats.max_depth as usize);
+            let mut stack = Vec::with_capacity(bound);
             self.walk(&mut search, &mut stack);
         }
         search.best
     }
 
+    /// Near-first through the wide tree: a node's hit children (inner
+    /// nodes and leaves alike) are pushed farthest first, by the distance
+    /// at which the ray enters their boxes, so the nearest is visited next;
+    /// a pending subtree entered beyond the best hit so far is dropped.
     #[inline(always)]
     fn walk(&self, search: &mut Search<'_>, stack: &mut impl NodeStack) {
-        let nodes = &self.bvh.nodes;
+        let nodes = &self.bvh4.nodes;
         let slab = RaySlab::new(search.ray.origin, search.ray.dir, self.scene_abs_max);
-        let bounds = |index: u32| {
-            let aabb = nodes[index as usize].aabb();
-            (aabb.min, aabb.max)
-        };
-        let (root_min, root_max) = bounds(0);
-        if slab
-            .entry_lanes(root_min, root_max, search.t_min, search.t_hi())
-            .is_none()
-        {
-            return;
-        }
         let mut current = 0u32;
         loop {
             let node = &nodes[current as usize];
-            let next = if node.is_leaf() {
-                let first = node.first_index as usize;
-                for slot in first..first + node.prim_count as usize {
+            let (mask, near) = slab.entry_four(&node.min, &node.max, search.t_min, search.t_hi());
+            let mut hits = [Pending {
+                index: 0,
+                count: 0,
+                t_enter: 0.0,
+            }; 4];
+            let mut len = 0;
+            let mut bits = mask & node.children;
+            while bits != 0 {
+                let lane = bits.trailing_zeros() as usize;
+                bits &= bits - 1;
+                let hit = Pending {
+                    index: node.index[lane],
+                    count: u32::from(node.count[lane]),
+                    t_enter: near[lane],
+                };
+                // Insertion into the hits so far, farthest first.
+                let mut at = len;
+                while at > 0 && hits[at - 1].t_enter < hit.t_enter {
+                    hits[at] = hits[at - 1];
+                    at -= 1;
+                }
+                hits[at] = hit;
+                len += 1;
+            }
+            for &hit in &hits[..len] {
+                stack.push(hit);
+            }
+            current = loop {
+                let Some(pending) = stack.pop() else {
+                    return;
+                };
+                // Inclusive: a subtree entered exactly at the best
+                // distance may still hold a lower face index.
+                if pending.t_enter > search.t_hi() {
+                    continue;
+                }
+                if pending.count == 0 {
+                    break pending.index;
+                }
+                let first = pending.index as usize;
+                for slot in first..first + pending.count as usize {
                     search.consider(self.prim_faces[slot], self.prim_tris[slot]);
                 }
-                None
-            } else {
-                let left = node.first_index;
-                let right = left + 1;
-                let t_hi = search.t_hi();
-                let (l_min, l_max) = bounds(left);
-                let (r_min, r_max) = bounds(right);
-                let hit_left = slab.entry_lanes(l_min, l_max, search.t_min, t_hi);
-                let hit_right = slab.entry_lanes(r_min, r_max, search.t_min, t_hi);
-                match (hit_left, hit_right) {
-                    (Some(tl), Some(tr)) => {
-                        let (near, far, t_far) = if tr < tl {
-                            (right, left, tl)
-                        } else {
-                            (left, right, tr)
-                        };
-                        stack.push(far, t_far);
-                        Some(near)
-                    }
-                    (Some(_), None) => Some(left),
-                    (None, Some(_)) => Some(right),
-                    (None, None) => None,
-                }
-            };
-            current = match next {
-                Some(child) => child,
-                None => loop {
-                    let Some((node, t_enter)) = stack.pop() else {
-                        return;
-                    };
-                    // Inclusive: a subtree entered exactly at the best
-                    // distance may still hold a lower face index.
-                    if t_enter <= search.t_hi() {
-                        break node;
-                    }
-                },
             };
         }
     }

@@ -1,6 +1,9 @@
 //! A tree deeper than the inline traversal stack: geometrically shrinking
 //! tets make PLOC chain them. Checks the heap-stack fallback of
-//! `first_entry` and that `flatten` refuses a tree the GPU stack cannot hold.
+//! `first_entry` (a binary tree deeper than 64 levels collapses to a wide
+//! one of at least 22, a wide level spanning at most three binary ones,
+//! whose traversal may keep 3 entries a level pending: more than the
+//! inline 64) and that `flatten` refuses a tree the GPU stack cannot hold.
 
 mod support;
 
