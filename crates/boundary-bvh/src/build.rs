@@ -144,6 +144,14 @@ impl BoundaryBvh {
     pub fn face_count(&self) -> usize {
         self.stats.faces
     }
+
+    /// Bytes of the arrays the CPU's queries read: the wide tree's nodes,
+    /// and the faces' vertices and indices in leaf order.
+    pub fn query_bytes(&self) -> usize {
+        self.bvh4.bytes()
+            + self.prim_tris.len() * std::mem::size_of::<[Vec3; 3]>()
+            + self.prim_faces.len() * std::mem::size_of::<u32>()
+    }
 }
 
 struct TreeShape {

@@ -125,6 +125,11 @@ impl Bvh4 {
     pub fn stack_bound(&self) -> usize {
         3 * self.levels as usize + 1
     }
+
+    /// Bytes of the nodes.
+    pub fn bytes(&self) -> usize {
+        self.nodes.len() * std::mem::size_of::<Node4>()
+    }
 }
 
 #[cfg(test)]

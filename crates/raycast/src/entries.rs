@@ -30,19 +30,38 @@ pub(crate) const LIST_LEN: usize = 8;
 /// Candidate tests (one face against one pixel's ray, about 60
 /// instructions; counted by the faces' widened boxes, an upper bound) per
 /// pixel above which the lists may cost more than the BVH queries they
-/// replace (about 1300 instructions each, 1.6 per pixel on the Blunt Fin):
+/// replace (about 1200 instructions each, 1.6 per pixel on the Blunt Fin):
 /// such a frame keeps the BVH.
 const MAX_TESTS_PER_PIXEL: usize = 24;
 
 /// Pixels per boundary face below which a frame keeps the BVH: projecting
-/// every face costs more than the queries save. PPI, alternating runs,
-/// min of frames, BVH against lists: Blunt Fin (13 514 faces) 128 x 128
-/// (1.2 pixels per face) 8.1-9.2 against 9.4-10.1 ms; 160 x 160 (1.9)
-/// 11.4-12.7 against 11.4-12.7; 200 x 200 (3.0) 15.8-16.3 against
-/// 16.2-16.7; 256 x 256 (4.8) 25.6-26.8 against 25.2-25.6; 512 x 512 (19)
-/// 98.5-102.3 against 93.3-96.9; the 1 M torus shell (88 944 faces, with
-/// more re-entries) 512 x 512 (2.9) 133.2-135.7 against 107.5-110.0.
-const MIN_PIXELS_PER_FACE: f64 = 1.5;
+/// every face costs more than the queries save. How much a query costs
+/// depends on whether the BVH stays in the caches, so there are two bounds,
+/// by the bytes the queries read ([`BoundaryBvh::query_bytes`]) against
+/// [`CACHED_BVH_BYTES`]. PPI, BVH against lists (alternating runs; frames'
+/// minimum in ms, or M segments/s):
+///
+/// - A cached tree: the Blunt Fin (13 514 faces, 0.7 MB), best of 7 frames,
+///   one thread: 64 x 64 (0.30 pixels per face) 2.8-2.9 against
+///   3.3-3.4 ms; 96 x 96 (0.68) 5.8-6.1 against 5.9; 128 x 128 (1.2)
+///   10.2-10.6 against 9.7-9.8.
+/// - Larger trees, two threads: the 1 M torus shell (88 944 faces) 128 x
+///   128 (0.18) 36.2-38.3 against 38.2-41.5 M segments/s, 192 x 192
+///   (0.41) 36.3-41.3 against 45.1-51.5; the 10 M shell (400 000 faces)
+///   256 x 256 (0.16) 42.7-43.3 against 43.1-43.2, 512 x 512 (0.66)
+///   50.6-53.7 against 58.9-64.6; the 40 M shell (1 000 224 faces) 256 x
+///   256 (0.066) 34.3 against 33.9, 384 x 384 (0.15) 43.7-44.0 against
+///   45.4-45.8, 512 x 512 (0.26) 50.0-50.3 against 53.4-53.9.
+///
+/// [`BoundaryBvh::query_bytes`]: tetray_boundary_bvh::BoundaryBvh::query_bytes
+const MIN_PIXELS_PER_FACE: f64 = 0.7;
+/// [`MIN_PIXELS_PER_FACE`] for a BVH of more than [`CACHED_BVH_BYTES`].
+const MIN_PIXELS_PER_FACE_UNCACHED: f64 = 0.1;
+
+/// Query bytes above which a BVH is taken not to stay in the caches
+/// between one pixel's queries and the next's: a core's second-level cache
+/// (1 to 2 MiB on current x86-64 processors).
+const CACHED_BVH_BYTES: usize = 2 << 20;
 
 /// Boundary faces projected per parallel job (fewer are not worth a
 /// thread's start).
@@ -178,35 +197,44 @@ impl EntryBins {
     ) -> Option<EntryBins> {
         let ortho = rays.is_orthographic();
         let face_count = scene.topology.boundary_faces.len() as f64;
-        if (eye_inside && !ortho) || ((width * height) as f64) < MIN_PIXELS_PER_FACE * face_count {
+        let min_pixels_per_face = if scene.bvh.query_bytes() > CACHED_BVH_BYTES {
+            MIN_PIXELS_PER_FACE_UNCACHED
+        } else {
+            MIN_PIXELS_PER_FACE
+        };
+        if (eye_inside && !ortho) || ((width * height) as f64) < min_pixels_per_face * face_count {
             return None;
         }
         let screen = Screen::new(rays);
         let points = &scene.mesh.points;
         let (w, h) = (width as f64 - 1.0, height as f64 - 1.0);
-        let faces: Option<Vec<Option<ScreenFace>>> = (scene.topology.boundary_faces)
+        // Only the faces that may cover a pixel centre are kept (at less
+        // than a pixel per face, most cover none), collected straight into
+        // one vector; a face the frame cannot bound ends the collection.
+        let faces: Option<Vec<ScreenFace>> = (scene.topology.boundary_faces)
             .par_iter()
             .with_min_len(FACES_PER_JOB)
             .enumerate()
-            .map(|(face, bf)| {
+            .filter_map(|(face, bf)| {
                 let tri = bf.vertices.map(|v| points[v as usize]);
-                let screen_tri = screen.face_box(tri.map(|p| p.as_dvec3()))?;
-                Some(screen_tri.and_then(|ScreenTri { bounds, edges }| {
-                    let [x0, x1, y0, y1] = bounds;
-                    if x0 > x1 || y0 > y1 || x1 < 0.0 || y1 < 0.0 || x0 > w || y0 > h {
-                        return None;
-                    }
-                    Some(ScreenFace {
-                        face: face as u32,
-                        tri,
-                        x: [x0, x1].map(|v| v.clamp(0.0, w) as u32),
-                        y: [y0, y1].map(|v| v.clamp(0.0, h) as u32),
-                        edges,
-                    })
+                let Some(screen_tri) = screen.face_box(tri.map(|p| p.as_dvec3())) else {
+                    return Some(None);
+                };
+                let ScreenTri { bounds, edges } = screen_tri?;
+                let [x0, x1, y0, y1] = bounds;
+                if x0 > x1 || y0 > y1 || x1 < 0.0 || y1 < 0.0 || x0 > w || y0 > h {
+                    return None;
+                }
+                Some(Some(ScreenFace {
+                    face: face as u32,
+                    tri,
+                    x: [x0, x1].map(|v| v.clamp(0.0, w) as u32),
+                    y: [y0, y1].map(|v| v.clamp(0.0, h) as u32),
+                    edges,
                 }))
             })
             .collect();
-        let faces: Vec<ScreenFace> = faces?.into_iter().flatten().collect();
+        let faces = faces?;
         let tests: usize = (faces.iter())
             .map(|f| (f.x[1] - f.x[0] + 1) as usize * (f.y[1] - f.y[0] + 1) as usize)
             .sum();
