@@ -139,10 +139,10 @@ impl BoundaryBvh {
         search.best
     }
 
-    /// Near-first through the wide tree: a node's hit children (inner
-    /// nodes and leaves alike) are pushed farthest first, by the distance
-    /// at which the ray enters their boxes, so the nearest is visited next;
-    /// a pending subtree entered beyond the best hit so far is dropped.
+    /// Near-first through the wide tree: of a node's hit children, ordered
+    /// by the distance at which the ray enters their boxes, the nearest is
+    /// visited next and the others are pushed, farthest first; a pending
+    /// subtree entered beyond the best hit so far is dropped.
     #[inline(always)]
     fn walk(&self, search: &mut Search<'_>, stack: &mut impl NodeStack) {
         let nodes = &self.bvh4.nodes;
@@ -151,32 +151,56 @@ impl BoundaryBvh {
         loop {
             let node = &nodes[current as usize];
             let (mask, near) = slab.entry_four(&node.min, &node.max, search.t_min, search.t_hi());
-            let mut hits = [Pending {
-                index: 0,
-                count: 0,
-                t_enter: 0.0,
-            }; 4];
-            let mut len = 0;
             let mut bits = mask & node.children;
-            while bits != 0 {
-                let lane = bits.trailing_zeros() as usize;
-                bits &= bits - 1;
-                let hit = Pending {
-                    index: node.index[lane],
-                    count: u32::from(node.count[lane]),
-                    t_enter: near[lane],
-                };
-                // Insertion into the hits so far, farthest first.
-                let mut at = len;
-                while at > 0 && hits[at - 1].t_enter < hit.t_enter {
-                    hits[at] = hits[at - 1];
-                    at -= 1;
+            let nearest = if bits & bits.wrapping_sub(1) == 0 {
+                // One child hit (or none): no order to find.
+                if bits == 0 {
+                    None
+                } else {
+                    let lane = bits.trailing_zeros() as usize;
+                    Some(Pending {
+                        index: node.index[lane],
+                        count: u32::from(node.count[lane]),
+                        t_enter: near[lane],
+                    })
                 }
-                hits[at] = hit;
-                len += 1;
-            }
-            for &hit in &hits[..len] {
-                stack.push(hit);
+            } else {
+                let mut hits = [Pending {
+                    index: 0,
+                    count: 0,
+                    t_enter: 0.0,
+                }; 4];
+                let mut len = 0;
+                while bits != 0 {
+                    let lane = bits.trailing_zeros() as usize;
+                    bits &= bits - 1;
+                    let hit = Pending {
+                        index: node.index[lane],
+                        count: u32::from(node.count[lane]),
+                        t_enter: near[lane],
+                    };
+                    // Insertion into the hits so far, farthest first.
+                    let mut at = len;
+                    while at > 0 && hits[at - 1].t_enter < hit.t_enter {
+                        hits[at] = hits[at - 1];
+                        at -= 1;
+                    }
+                    hits[at] = hit;
+                    len += 1;
+                }
+                for &hit in &hits[..len - 1] {
+                    stack.push(hit);
+                }
+                Some(hits[len - 1])
+            };
+            // The nearest child next: an inner node is descended into, a
+            // leaf's faces are tested at once.
+            if let Some(hit) = nearest {
+                if hit.count == 0 {
+                    current = hit.index;
+                    continue;
+                }
+                self.test_leaf(search, hit);
             }
             current = loop {
                 let Some(pending) = stack.pop() else {
@@ -190,11 +214,17 @@ impl BoundaryBvh {
                 if pending.count == 0 {
                     break pending.index;
                 }
-                let first = pending.index as usize;
-                for slot in first..first + pending.count as usize {
-                    search.consider(self.prim_faces[slot], self.prim_tris[slot]);
-                }
+                self.test_leaf(search, pending);
             };
+        }
+    }
+
+    /// Tests the faces of a leaf.
+    #[inline(always)]
+    fn test_leaf(&self, search: &mut Search<'_>, leaf: Pending) {
+        let first = leaf.index as usize;
+        for slot in first..first + leaf.count as usize {
+            search.consider(self.prim_faces[slot], self.prim_tris[slot]);
         }
     }
 }
