@@ -25,6 +25,15 @@ struct Pending {
     t_enter: f32,
 }
 
+impl Pending {
+    /// A placeholder that fills the fixed arrays.
+    const NONE: Pending = Pending {
+        index: 0,
+        count: 0,
+        t_enter: 0.0,
+    };
+}
+
 /// Pending subtrees, nearest on top.
 trait NodeStack {
     fn push(&mut self, pending: Pending);
@@ -124,11 +133,7 @@ impl BoundaryBvh {
         let bound = self.bvh4.stack_bound();
         if bound <= INLINE_STACK {
             let mut stack = ArrayStack {
-                items: [Pending {
-                    index: 0,
-                    count: 0,
-                    t_enter: 0.0,
-                }; INLINE_STACK],
+                items: [Pending::NONE; INLINE_STACK],
                 len: 0,
             };
             self.walk(&mut search, &mut stack);
@@ -151,34 +156,21 @@ impl BoundaryBvh {
         loop {
             let node = &nodes[current as usize];
             let (mask, near) = slab.entry_four(&node.min, &node.max, search.t_min, search.t_hi());
+            let child = |lane: usize| Pending {
+                index: node.index[lane],
+                count: u32::from(node.count[lane]),
+                t_enter: near[lane],
+            };
             let mut bits = mask & node.children;
             let nearest = if bits & bits.wrapping_sub(1) == 0 {
                 // One child hit (or none): no order to find.
-                if bits == 0 {
-                    None
-                } else {
-                    let lane = bits.trailing_zeros() as usize;
-                    Some(Pending {
-                        index: node.index[lane],
-                        count: u32::from(node.count[lane]),
-                        t_enter: near[lane],
-                    })
-                }
+                (bits != 0).then(|| child(bits.trailing_zeros() as usize))
             } else {
-                let mut hits = [Pending {
-                    index: 0,
-                    count: 0,
-                    t_enter: 0.0,
-                }; 4];
+                let mut hits = [Pending::NONE; 4];
                 let mut len = 0;
                 while bits != 0 {
-                    let lane = bits.trailing_zeros() as usize;
+                    let hit = child(bits.trailing_zeros() as usize);
                     bits &= bits - 1;
-                    let hit = Pending {
-                        index: node.index[lane],
-                        count: u32::from(node.count[lane]),
-                        t_enter: near[lane],
-                    };
                     // Insertion into the hits so far, farthest first.
                     let mut at = len;
                     while at > 0 && hits[at - 1].t_enter < hit.t_enter {
