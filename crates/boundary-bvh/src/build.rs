@@ -23,6 +23,9 @@ pub struct BoundaryBvh {
     pub(crate) prim_faces: Vec<u32>,
     /// Per primitive slot: the face's vertices, outward counter-clockwise.
     pub(crate) prim_tris: Vec<[Vec3; 3]>,
+    /// Each face's first primitive slot, ascending: every face once, in
+    /// leaf order.
+    pub(crate) face_slots: Vec<u32>,
     /// Per boundary face: its point indices (for the flat GPU layout).
     pub(crate) face_vertices: Vec<[u32; 3]>,
     /// Largest coordinate magnitude of any boundary point (box padding scale).
@@ -108,6 +111,7 @@ impl BoundaryBvh {
         // (face) indices; copy the faces into that order for locality.
         let prim_faces = bvh.primitive_indices.clone();
         let prim_tris = prim_faces.iter().map(|&f| tris[f as usize]).collect();
+        let face_slots = first_slots(&prim_faces, faces.len());
         let shape = tree_shape(&bvh);
         let stats = BvhStats {
             preset,
@@ -125,6 +129,7 @@ impl BoundaryBvh {
             face_vertices: faces.iter().map(|f| f.vertices).collect(),
             prim_faces,
             prim_tris,
+            face_slots,
             scene_abs_max,
             stats,
         })
@@ -145,6 +150,17 @@ impl BoundaryBvh {
         self.stats.faces
     }
 
+    /// The `i`-th boundary face in leaf order (`i < face_count()`) and its
+    /// vertices, outward counter-clockwise (the mesh's points): a pass over
+    /// every face that needs only its points reads them in this order from
+    /// one array, faces near in space near in memory, where the faces'
+    /// point indices would gather them from the whole mesh.
+    #[inline]
+    pub fn face_in_leaf_order(&self, i: usize) -> (u32, [Vec3; 3]) {
+        let slot = self.face_slots[i] as usize;
+        (self.prim_faces[slot], self.prim_tris[slot])
+    }
+
     /// Bytes of the arrays the CPU's queries read: the wide tree's nodes,
     /// and the faces' vertices and indices in leaf order.
     pub fn query_bytes(&self) -> usize {
@@ -152,6 +168,16 @@ impl BoundaryBvh {
             + self.prim_tris.len() * std::mem::size_of::<[Vec3; 3]>()
             + self.prim_faces.len() * std::mem::size_of::<u32>()
     }
+}
+
+/// Each of `faces` faces' first slot in `prim_faces`, in ascending order.
+fn first_slots(prim_faces: &[u32], faces: usize) -> Vec<u32> {
+    let mut seen = vec![false; faces];
+    (0u32..)
+        .zip(prim_faces)
+        .filter(|&(_, &face)| !std::mem::replace(&mut seen[face as usize], true))
+        .map(|(slot, _)| slot)
+        .collect()
 }
 
 struct TreeShape {

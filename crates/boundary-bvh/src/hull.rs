@@ -19,9 +19,8 @@ impl BoundaryBvh {
     /// its plane, so that a ray leaving through it cannot re-enter.
     pub fn final_exit_faces(&self) -> Vec<bool> {
         let mut first_slot = vec![usize::MAX; self.face_count()];
-        for (slot, &face) in self.prim_faces.iter().enumerate() {
-            let first = &mut first_slot[face as usize];
-            *first = (*first).min(slot);
+        for &slot in &self.face_slots {
+            first_slot[self.prim_faces[slot as usize] as usize] = slot as usize;
         }
         let extremes = self.extreme_points();
         first_slot

@@ -209,6 +209,28 @@ fn stats_describe_a_binary_tree_over_every_face() {
     }
 }
 
+/// The leaf-order pass gives every face once, with its own points, on
+/// every preset (pre-splits put a face in several leaves).
+#[test]
+fn leaf_order_gives_every_face_once_with_its_points() {
+    for case in &cases() {
+        let topo = topology(&case.mesh);
+        for b in build_all(&case.mesh, &topo) {
+            let faces = b.bvh.face_count();
+            let mut seen = vec![false; faces];
+            for i in 0..faces {
+                let (face, tri) = b.bvh.face_in_leaf_order(i);
+                assert!(!std::mem::replace(&mut seen[face as usize], true));
+                let points = topo.boundary_faces[face as usize]
+                    .vertices
+                    .map(|v| case.mesh.points[v as usize]);
+                assert_eq!(tri, points, "{} / {}: face {face}", case.name, b.preset);
+            }
+            assert!(seen.iter().all(|&s| s), "{} / {}", case.name, b.preset);
+        }
+    }
+}
+
 #[test]
 fn flat_layout_is_the_documented_wgsl_layout() {
     use std::mem::{align_of, offset_of, size_of};

@@ -355,8 +355,15 @@ impl<'a, I: SegmentIntegrator + ?Sized> Frame<'a, I> {
     /// gains from them ([`EntryBins::new`], parallel: call it in the
     /// frame's pool).
     pub fn bin_entries(&mut self) {
-        let (w, h) = (self.width, self.height);
-        self.entries = EntryBins::new(self.scene, self.rays, w, h, self.eye_inside, TILE);
+        let size = (self.width, self.height);
+        self.entries = EntryBins::new(
+            self.scene,
+            self.rays,
+            size,
+            self.eye_inside,
+            TILE,
+            self.wide,
+        );
     }
 
     /// Whether rays take their entries from per-pixel lists.

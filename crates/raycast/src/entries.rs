@@ -123,6 +123,7 @@ impl EntryList {
 }
 
 /// A boundary face that may be entered, with the pixels it may cover.
+#[derive(Clone, Copy)]
 struct ScreenFace {
     face: u32,
     tri: [Vec3; 3],
@@ -180,20 +181,23 @@ pub(crate) struct EntryBins {
     /// Indices into `faces`, tile by tile.
     refs: Vec<u32>,
     faces: Vec<ScreenFace>,
+    /// Whether [`EntryBins::fill_tile`] runs the x86-64-v3 build.
+    wide: bool,
 }
 
 impl EntryBins {
     /// The bins of a `width x height` frame of `rays` in `tile x tile`
-    /// tiles, or `None` where the frame keeps the BVH: a perspective eye
+    /// tiles, projected and filled in the x86-64-v3 build where `wide`
+    /// (see [`tetray_wide::run`]), or `None` where the frame keeps the BVH: a perspective eye
     /// inside the mesh's bounds (`eye_inside`) or not in front of every
     /// boundary face, or more candidate tests than the queries would cost.
     pub fn new(
         scene: &Scene,
         rays: &PixelRays,
-        width: usize,
-        height: usize,
+        (width, height): (usize, usize),
         eye_inside: bool,
         tile: usize,
+        wide: bool,
     ) -> Option<EntryBins> {
         let ortho = rays.is_orthographic();
         let face_count = scene.topology.boundary_faces.len() as f64;
@@ -206,46 +210,58 @@ impl EntryBins {
             return None;
         }
         let screen = Screen::new(rays);
-        let points = &scene.mesh.points;
+        let bvh = &scene.bvh;
         let (w, h) = (width as f64 - 1.0, height as f64 - 1.0);
         // Only the faces that may cover a pixel centre are kept (at less
-        // than a pixel per face, most cover none), collected straight into
-        // one vector; a face the frame cannot bound ends the collection.
-        let faces: Option<Vec<ScreenFace>> = (scene.topology.boundary_faces)
-            .par_iter()
-            .with_min_len(FACES_PER_JOB)
-            .enumerate()
-            .filter_map(|(face, bf)| {
-                let tri = bf.vertices.map(|v| points[v as usize]);
-                let Some(screen_tri) = screen.face_box(tri.map(|p| p.as_dvec3())) else {
-                    return Some(None);
-                };
-                let ScreenTri { bounds, edges } = screen_tri?;
-                let [x0, x1, y0, y1] = bounds;
-                if x0 > x1 || y0 > y1 || x1 < 0.0 || y1 < 0.0 || x0 > w || y0 > h {
-                    return None;
-                }
-                Some(Some(ScreenFace {
-                    face: face as u32,
-                    tri,
-                    x: [x0, x1].map(|v| v.clamp(0.0, w) as u32),
-                    y: [y0, y1].map(|v| v.clamp(0.0, h) as u32),
-                    edges,
-                }))
+        // than a pixel per face, most cover none), read in the BVH's leaf
+        // order (one array, faces near in space near in memory) and
+        // projected a job at a time in the wide build; a face the frame
+        // cannot bound ends the collection.
+        let jobs: Option<Vec<Vec<ScreenFace>>> = (0..bvh.face_count())
+            .step_by(FACES_PER_JOB)
+            .collect::<Vec<_>>()
+            .into_par_iter()
+            .map(|start| {
+                let end = (start + FACES_PER_JOB).min(bvh.face_count());
+                tetray_wide::run(wide, || {
+                    // Room for every face of the job: the pages of the
+                    // part left unused are never touched.
+                    let mut kept = Vec::with_capacity(end - start);
+                    for i in start..end {
+                        let (face, tri) = bvh.face_in_leaf_order(i);
+                        match screen.face(face, tri, (w, h)) {
+                            Some(Some(face)) => kept.push(face),
+                            Some(None) => {}
+                            None => return None,
+                        }
+                    }
+                    Some(kept)
+                })
             })
             .collect();
-        let faces = faces?;
+        let mut jobs = jobs?;
+        let faces = if jobs.len() == 1 {
+            jobs.pop().unwrap_or_default()
+        } else {
+            jobs.concat()
+        };
         let tests: usize = (faces.iter())
             .map(|f| (f.x[1] - f.x[0] + 1) as usize * (f.y[1] - f.y[0] + 1) as usize)
             .sum();
         if tests > MAX_TESTS_PER_PIXEL * width * height {
             return None;
         }
-        Some(EntryBins::bin(faces, width, height, tile))
+        Some(EntryBins::bin(faces, width, height, tile, wide))
     }
 
     /// Sorts the faces into the tiles their pixel ranges meet.
-    fn bin(faces: Vec<ScreenFace>, width: usize, height: usize, tile: usize) -> EntryBins {
+    fn bin(
+        faces: Vec<ScreenFace>,
+        width: usize,
+        height: usize,
+        tile: usize,
+        wide: bool,
+    ) -> EntryBins {
         let tiles_x = width.div_ceil(tile);
         let tiles = tiles_x * height.div_ceil(tile);
         let tiles_of = |f: &ScreenFace| {
@@ -278,6 +294,7 @@ impl EntryBins {
             starts: counts,
             refs,
             faces,
+            wide,
         }
     }
 
@@ -286,6 +303,21 @@ impl EntryBins {
     /// `frames` receives the pixels' rays, in the same order.
     #[inline(never)]
     pub fn fill_tile(
+        &self,
+        rays: &PixelRays,
+        (x0, y0): (usize, usize),
+        (w, h): (usize, usize),
+        lists: &mut Vec<EntryList>,
+        frames: &mut Vec<RayFrame>,
+    ) {
+        tetray_wide::run(self.wide, || {
+            self.fill_tile_with(rays, (x0, y0), (w, h), lists, frames)
+        });
+    }
+
+    /// [`EntryBins::fill_tile`], inlined into its build.
+    #[inline(always)]
+    fn fill_tile_with(
         &self,
         rays: &PixelRays,
         (x0, y0): (usize, usize),
@@ -364,11 +396,31 @@ impl Screen {
         }
     }
 
+    /// Boundary face `face` with points `tri` on the screen, as
+    /// [`Screen::face_box`] answers for it: `None` where the frame cannot
+    /// bound the face, `Some(None)` where no pixel's ray enters it.
+    #[inline(always)]
+    fn face(&self, face: u32, tri: [Vec3; 3], (w, h): (f64, f64)) -> Option<Option<ScreenFace>> {
+        let screen_tri = self.face_box(tri.map(|p| p.as_dvec3()), (w, h))?;
+        Some(screen_tri.map(|ScreenTri { bounds, edges }| {
+            let [x0, x1, y0, y1] = bounds;
+            ScreenFace {
+                face,
+                tri,
+                x: [x0, x1].map(|v| v.clamp(0.0, w) as u32),
+                y: [y0, y1].map(|v| v.clamp(0.0, h) as u32),
+                edges,
+            }
+        }))
+    }
+
     /// The widened box `[x0, x1, y0, y1]` (pixel coordinates, rounded
-    /// inwards to pixel centres) of a face that may be entered; `Some(None)`
-    /// for a face no ray of the frame can enter; `None` when the frame
-    /// cannot bound the face (a vertex not in front of a perspective eye).
-    fn face_box(&self, [a, b, c]: [DVec3; 3]) -> Option<Option<ScreenTri>> {
+    /// inwards to pixel centres) of a face that may be entered by the ray
+    /// of a pixel centre `(0..=w, 0..=h)`; `Some(None)` for a face no such
+    /// ray can enter; `None` when the frame cannot bound the face (a vertex
+    /// not in front of a perspective eye).
+    #[inline(always)]
+    fn face_box(&self, [a, b, c]: [DVec3; 3], (w, h): (f64, f64)) -> Option<Option<ScreenTri>> {
         let rel = [a, b, c].map(|p| p - self.eye);
         let depth = rel.map(|d| d.dot(self.direction));
         if !self.ortho
@@ -433,6 +485,10 @@ impl Screen {
             (min(sy) - pad).ceil(),
             (max(sy) + pad).floor(),
         ];
+        let [x0, x1, y0, y1] = bounds;
+        if x0 > x1 || y0 > y1 || x1 < 0.0 || y1 < 0.0 || x0 > w || y0 > h {
+            return Some(None);
+        }
         Some(Some(ScreenTri {
             bounds,
             edges: widened_edges(sx, sy, pad),
@@ -444,6 +500,7 @@ impl Screen {
 /// outwards, as `a x + b y + c >= 0` inside: every point within `pad` of
 /// the triangle passes all three. `None` for a triangle whose orientation
 /// is not clear of the lines' own rounding.
+#[inline(always)]
 fn widened_edges(sx: [f64; 3], sy: [f64; 3], pad: f64) -> Option<[[f64; 3]; 3]> {
     let area = (sx[1] - sx[0]) * (sy[2] - sy[0]) - (sx[2] - sx[0]) * (sy[1] - sy[0]);
     let size = (0..3)
@@ -467,161 +524,4 @@ fn widened_edges(sx: [f64; 3], sy: [f64; 3], pad: f64) -> Option<[[f64; 3]; 3]> 
 }
 
 #[cfg(test)]
-mod tests {
-    use glam::Vec3;
-    use tetray_boundary_bvh::{EntryHit, brute_force_first_entry, reentry_start};
-    use tetray_core::watertight::{RayFrame, cross_triangle};
-    use tetray_mesh::Topology;
-
-    use super::*;
-    use tetray_core::camera::Camera;
-    use tetray_mesh::synthetic::{CellSplit, add_field, box_grid, hollow_box, jittered_box, merge};
-
-    fn scene(mut mesh: tetray_mesh::TetMesh) -> Scene {
-        add_field(
-            &mut mesh,
-            "s",
-            tetray_mesh::synthetic::ScalarSpec::Constant(1.0),
-        );
-        let topology = Topology::build(&mesh).unwrap();
-        Scene::new(mesh, topology, "s", Default::default()).unwrap()
-    }
-
-    /// A holed jittered box and, beside it, a row of ten small boxes along
-    /// z (rays along z enter more faces than a list holds).
-    fn scenes() -> Vec<Scene> {
-        let (lo, hi) = (Vec3::ZERO, Vec3::ONE);
-        let holed = hollow_box(lo, hi, [4, 4, 4], [1, 1, 1], [3, 3, 3], CellSplit::Five).unwrap();
-        let mut row = jittered_box(lo, hi, [3, 4, 3], 0.2, 7, CellSplit::Six).unwrap();
-        for k in 0..10 {
-            let z = 1.2 + 0.15 * k as f32;
-            let b = Vec3::new(0.3, 0.3, z);
-            let cube = box_grid(b, b + Vec3::new(0.4, 0.4, 0.1), [1, 1, 1], CellSplit::Five);
-            row = merge(row, cube.unwrap()).unwrap();
-        }
-        vec![scene(holed), scene(row)]
-    }
-
-    /// Views from outside: oblique, zoomed in (pixels of 1e-4 radians),
-    /// along an axis with pixel centres on grid lines (perspective and
-    /// orthographic), and orthographic with its view plane through the
-    /// mesh (rays starting inside).
-    fn cameras(scene: &Scene) -> Vec<Camera> {
-        let (lo, hi) = scene.bounds();
-        let mut oblique = Camera::reset_to_bounds(lo, hi).unwrap();
-        oblique.azimuth(30.0).unwrap();
-        oblique.elevation(20.0).unwrap();
-        oblique.orthogonalize_view_up().unwrap();
-        let mut zoomed = oblique;
-        zoomed.zoom(300.0).unwrap();
-        let centre = (lo + hi) * 0.5;
-        let axis = Camera {
-            position: Vec3::new(0.5, 0.5, -3.0),
-            focal_point: Vec3::new(0.5, 0.5, 0.0),
-            view_up: Vec3::Y,
-            ..oblique
-        };
-        let axis_ortho = Camera {
-            parallel_scale: Some(0.75),
-            ..axis
-        };
-        let through = Camera {
-            position: centre - oblique.basis().unwrap().direction * 0.01,
-            parallel_scale: Some(1.5),
-            ..oblique
-        };
-        vec![oblique, zoomed, axis, axis_ortho, through]
-    }
-
-    /// Every entering crossing of `ray`, in the lists' order.
-    fn all_entries(scene: &Scene, ray: &RayFrame) -> Vec<EntryHit> {
-        let mut all: Vec<EntryHit> = (0u32..)
-            .zip(&scene.topology.boundary_faces)
-            .filter_map(|(face, bf)| {
-                let [a, b, c] = bf
-                    .vertices
-                    .map(|v| ray.project(scene.mesh.points[v as usize]));
-                let crossing = cross_triangle(a, b, c)?;
-                crossing.entering.then_some(EntryHit {
-                    face,
-                    t: crossing.t,
-                })
-            })
-            .collect();
-        all.sort_by(|a, b| a.t.total_cmp(&b.t).then(a.face.cmp(&b.face)));
-        all
-    }
-
-    /// Each pixel's list holds exactly the entries of its ray (or says it
-    /// overflowed, when there are more), and answers the queries a walk
-    /// makes (from the start, from each entry, from each re-entry start,
-    /// skipping the faces entered there) as the brute-force scan does.
-    #[test]
-    fn lists_answer_as_the_brute_force_scan() {
-        let (width, height) = (33, 24);
-        let (mut lists, mut frames) = (Vec::new(), Vec::new());
-        let (mut pixels, mut overflowed, mut reentering) = (0, 0, 0);
-        for scene in scenes() {
-            for camera in cameras(&scene) {
-                let rays = camera.pixel_rays(width as u32, height as u32).unwrap();
-                let bins = EntryBins::new(&scene, &rays, width, height, false, 8).unwrap();
-                for (y0, x0) in (0..height)
-                    .step_by(8)
-                    .flat_map(|y| (0..width).step_by(8).map(move |x| (y, x)))
-                {
-                    let size = ((x0 + 8).min(width) - x0, (y0 + 8).min(height) - y0);
-                    bins.fill_tile(&rays, (x0, y0), size, &mut lists, &mut frames);
-                    for (list, ray) in lists.iter().zip(&frames) {
-                        pixels += 1;
-                        let all = all_entries(&scene, ray);
-                        if !list.is_complete() {
-                            assert!(all.len() > LIST_LEN);
-                            overflowed += 1;
-                            continue;
-                        }
-                        assert_eq!(&list.hits[..usize::from(list.len)], &all[..]);
-                        reentering += usize::from(all.len() > 1);
-                        let abs_max = scene.bvh.scene_abs_max();
-                        let mut starts = vec![f32::NEG_INFINITY, 0.0];
-                        for h in &all {
-                            starts.extend([h.t, reentry_start(ray, h.t, abs_max)]);
-                        }
-                        for &t_min in &starts {
-                            for skip in [vec![]].into_iter().chain(all.iter().map(|h| vec![h.face]))
-                            {
-                                let want = brute_force_first_entry(
-                                    &scene.mesh,
-                                    &scene.topology,
-                                    ray,
-                                    t_min,
-                                    f32::INFINITY,
-                                    &skip,
-                                );
-                                assert_eq!(list.first_entry(t_min, f32::INFINITY, &skip), want);
-                            }
-                        }
-                        assert_eq!(list.first_entry(f32::NAN, f32::INFINITY, &[]), None);
-                    }
-                }
-            }
-        }
-        // Both paths ran, and many rays came back after leaving.
-        assert!(
-            overflowed > 20 && reentering > pixels / 8,
-            "{overflowed} {reentering} {pixels}"
-        );
-    }
-
-    /// A perspective eye inside the mesh's bounds sees faces behind it:
-    /// the frame keeps the BVH.
-    #[test]
-    fn an_eye_inside_keeps_the_bvh() {
-        let scene = &scenes()[0];
-        let camera = Camera {
-            position: Vec3::new(0.5, 0.5, 0.1),
-            ..cameras(scene)[0]
-        };
-        let rays = camera.pixel_rays(16, 16).unwrap();
-        assert!(EntryBins::new(scene, &rays, 16, 16, true, 8).is_none());
-    }
-}
+mod tests;
