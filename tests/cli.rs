@@ -354,12 +354,13 @@ fn bench_prints_positive_rates() {
     assert!(f(&out["ms_per_frame_mad"]) >= 0.0);
     assert_eq!(out["steps_bound_hits"], 0);
     assert_eq!(out["walk_failures"], 0);
-    // 64 x 64 pixels for 13 514 boundary faces: the BVH answers entries.
+    // 64 x 64 pixels for 13 514 boundary faces (0.30 per face): the BVH
+    // answers entries.
     assert_eq!(out["entry_lists_frames"], 0);
 }
 
-/// From 1.5 pixels per boundary face on, the CPU ray caster takes its
-/// entries from per-pixel lists, and says so.
+/// With enough pixels per boundary face (1.5 here), the CPU ray caster
+/// takes its entries from per-pixel lists, and says so.
 #[test]
 fn bench_reports_entry_lists() {
     let dir = scratch("bench-lists");

@@ -41,10 +41,12 @@ const MAX_TESTS_PER_PIXEL: usize = 24;
 /// [`CACHED_BVH_BYTES`]. PPI, BVH against lists (alternating runs; frames'
 /// minimum in ms, or M segments/s):
 ///
-/// - A cached tree: the Blunt Fin (13 514 faces, 0.7 MB), best of 7 frames,
-///   one thread: 64 x 64 (0.30 pixels per face) 2.8-2.9 against
-///   3.3-3.4 ms; 96 x 96 (0.68) 5.8-6.1 against 5.9; 128 x 128 (1.2)
-///   10.2-10.6 against 9.7-9.8.
+/// - A cached tree, one thread, best of 7 frames: the Blunt Fin (13 514
+///   faces, 0.7 MB) at 64 x 64 (0.30 pixels per face) 2.6-2.8 against
+///   2.8-2.9 ms; 72 x 72 (0.38) 3.4-3.7 against 3.4; 80 x 80 (0.47)
+///   4.1-4.2 against 4.0; 96 x 96 (0.68) 5.7-6.2 against 5.4-5.5. The
+///   200 k torus shell (26 784 faces, under 2 MiB) at 128 x 128 (0.61)
+///   13.0-13.6 against 10.1-10.6 ms.
 /// - Larger trees, two threads: the 1 M torus shell (88 944 faces) 128 x
 ///   128 (0.18) 36.2-38.3 against 38.2-41.5 M segments/s, 192 x 192
 ///   (0.41) 36.3-41.3 against 45.1-51.5; the 10 M shell (400 000 faces)
@@ -54,7 +56,7 @@ const MAX_TESTS_PER_PIXEL: usize = 24;
 ///   45.4-45.8, 512 x 512 (0.26) 50.0-50.3 against 53.4-53.9.
 ///
 /// [`BoundaryBvh::query_bytes`]: tetray_boundary_bvh::BoundaryBvh::query_bytes
-const MIN_PIXELS_PER_FACE: f64 = 0.7;
+const MIN_PIXELS_PER_FACE: f64 = 0.4;
 /// [`MIN_PIXELS_PER_FACE`] for a BVH of more than [`CACHED_BVH_BYTES`].
 const MIN_PIXELS_PER_FACE_UNCACHED: f64 = 0.1;
 
