@@ -225,20 +225,24 @@ impl EntryBins {
             .into_par_iter()
             .map(|start| {
                 let end = (start + FACES_PER_JOB).min(bvh.face_count());
-                tetray_wide::run(wide, || {
-                    // Room for every face of the job: the pages of the
-                    // part left unused are never touched.
-                    let mut kept = Vec::with_capacity(end - start);
-                    for i in start..end {
-                        let (face, tri) = bvh.face_in_leaf_order(i);
-                        match screen.face(face, tri, (w, h)) {
-                            Some(Some(face)) => kept.push(face),
-                            Some(None) => {}
-                            None => return None,
+                tetray_wide::run(
+                    wide,
+                    #[inline(always)]
+                    || {
+                        // Room for every face of the job: the pages of the
+                        // part left unused are never touched.
+                        let mut kept = Vec::with_capacity(end - start);
+                        for i in start..end {
+                            let (face, tri) = bvh.face_in_leaf_order(i);
+                            match screen.face(face, tri, (w, h)) {
+                                Some(Some(face)) => kept.push(face),
+                                Some(None) => {}
+                                None => return None,
+                            }
                         }
-                    }
-                    Some(kept)
-                })
+                        Some(kept)
+                    },
+                )
             })
             .collect();
         let mut jobs = jobs?;
@@ -312,49 +316,41 @@ impl EntryBins {
         lists: &mut Vec<EntryList>,
         frames: &mut Vec<RayFrame>,
     ) {
-        tetray_wide::run(self.wide, || {
-            self.fill_tile_with(rays, (x0, y0), (w, h), lists, frames)
-        });
-    }
-
-    /// [`EntryBins::fill_tile`], inlined into its build.
-    #[inline(always)]
-    fn fill_tile_with(
-        &self,
-        rays: &PixelRays,
-        (x0, y0): (usize, usize),
-        (w, h): (usize, usize),
-        lists: &mut Vec<EntryList>,
-        frames: &mut Vec<RayFrame>,
-    ) {
-        lists.clear();
-        lists.resize(w * h, EntryList::EMPTY);
-        frames.clear();
-        for y in y0..y0 + h {
-            for x in x0..x0 + w {
-                let ray = rays.ray(x as u32, y as u32);
-                if !(ray.origin.is_finite() && ray.dir.is_finite()) {
-                    lists[frames.len()].overflow = true;
-                }
-                frames.push(ray);
-            }
-        }
-        let tile = (y0 / self.tile) * self.tiles_x + x0 / self.tile;
-        let refs = &self.refs[self.starts[tile] as usize..self.starts[tile + 1] as usize];
-        for &i in refs {
-            let f = &self.faces[i as usize];
-            let xs = [(f.x[0] as usize).max(x0), (f.x[1] as usize).min(x0 + w - 1)];
-            for y in (f.y[0] as usize).max(y0)..=(f.y[1] as usize).min(y0 + h - 1) {
-                for x in f.span(y, xs) {
-                    let index = (y - y0) * w + (x - x0);
-                    let ray = &frames[index];
-                    let [a, b, c] = f.tri.map(|p| ray.project(p));
-                    if let Some(t) = entry_distance(a, b, c) {
-                        lists[index].insert(EntryHit { face: f.face, t });
+        // The body as a closure inlined into the build `run` picks.
+        tetray_wide::run(
+            self.wide,
+            #[inline(always)]
+            || {
+                lists.clear();
+                lists.resize(w * h, EntryList::EMPTY);
+                frames.clear();
+                for y in y0..y0 + h {
+                    for x in x0..x0 + w {
+                        let ray = rays.ray(x as u32, y as u32);
+                        if !(ray.origin.is_finite() && ray.dir.is_finite()) {
+                            lists[frames.len()].overflow = true;
+                        }
+                        frames.push(ray);
                     }
                 }
-            }
-        }
+                let tile = (y0 / self.tile) * self.tiles_x + x0 / self.tile;
+                let refs = &self.refs[self.starts[tile] as usize..self.starts[tile + 1] as usize];
+                for &i in refs {
+                    let f = &self.faces[i as usize];
+                    let xs = [(f.x[0] as usize).max(x0), (f.x[1] as usize).min(x0 + w - 1)];
+                    for y in (f.y[0] as usize).max(y0)..=(f.y[1] as usize).min(y0 + h - 1) {
+                        for x in f.span(y, xs) {
+                            let index = (y - y0) * w + (x - x0);
+                            let ray = &frames[index];
+                            let [a, b, c] = f.tri.map(|p| ray.project(p));
+                            if let Some(t) = entry_distance(a, b, c) {
+                                lists[index].insert(EntryHit { face: f.face, t });
+                            }
+                        }
+                    }
+                }
+            },
+        );
     }
 }
 
