@@ -190,9 +190,10 @@ pub(crate) struct EntryBins {
 impl EntryBins {
     /// The bins of a `width x height` frame of `rays` in `tile x tile`
     /// tiles, projected and filled in the x86-64-v3 build where `wide`
-    /// (see [`tetray_wide::run`]), or `None` where the frame keeps the BVH: a perspective eye
-    /// inside the mesh's bounds (`eye_inside`) or not in front of every
-    /// boundary face, or more candidate tests than the queries would cost.
+    /// (see [`tetray_wide::run`]), or `None` where the frame keeps the
+    /// BVH: a perspective eye inside the mesh's bounds (`eye_inside`) or
+    /// not in front of every boundary face, or more candidate tests than
+    /// the queries would cost.
     pub fn new(
         scene: &Scene,
         rays: &PixelRays,
@@ -219,12 +220,12 @@ impl EntryBins {
         // order (one array, faces near in space near in memory) and
         // projected a job at a time in the wide build; a face the frame
         // cannot bound ends the collection.
-        let jobs: Option<Vec<Vec<ScreenFace>>> = (0..bvh.face_count())
-            .step_by(FACES_PER_JOB)
-            .collect::<Vec<_>>()
+        let total = bvh.face_count();
+        let jobs: Option<Vec<Vec<ScreenFace>>> = (0..total.div_ceil(FACES_PER_JOB))
             .into_par_iter()
-            .map(|start| {
-                let end = (start + FACES_PER_JOB).min(bvh.face_count());
+            .map(|job| {
+                let start = job * FACES_PER_JOB;
+                let end = (start + FACES_PER_JOB).min(total);
                 tetray_wide::run(
                     wide,
                     #[inline(always)]
