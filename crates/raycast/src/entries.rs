@@ -203,29 +203,30 @@ impl EntryBins {
         wide: bool,
     ) -> Option<EntryBins> {
         let ortho = rays.is_orthographic();
-        let face_count = scene.topology.boundary_faces.len() as f64;
-        let min_pixels_per_face = if scene.bvh.query_bytes() > CACHED_BVH_BYTES {
+        let bvh = &scene.bvh;
+        let face_count = bvh.face_count();
+        let min_pixels_per_face = if bvh.query_bytes() > CACHED_BVH_BYTES {
             MIN_PIXELS_PER_FACE_UNCACHED
         } else {
             MIN_PIXELS_PER_FACE
         };
-        if (eye_inside && !ortho) || ((width * height) as f64) < min_pixels_per_face * face_count {
+        if (eye_inside && !ortho)
+            || ((width * height) as f64) < min_pixels_per_face * face_count as f64
+        {
             return None;
         }
         let screen = Screen::new(rays);
-        let bvh = &scene.bvh;
         let (w, h) = (width as f64 - 1.0, height as f64 - 1.0);
         // Only the faces that may cover a pixel centre are kept (at less
         // than a pixel per face, most cover none), read in the BVH's leaf
         // order (one array, faces near in space near in memory) and
         // projected a job at a time in the wide build; a face the frame
         // cannot bound ends the collection.
-        let total = bvh.face_count();
-        let jobs: Option<Vec<Vec<ScreenFace>>> = (0..total.div_ceil(FACES_PER_JOB))
+        let jobs: Option<Vec<Vec<ScreenFace>>> = (0..face_count.div_ceil(FACES_PER_JOB))
             .into_par_iter()
             .map(|job| {
                 let start = job * FACES_PER_JOB;
-                let end = (start + FACES_PER_JOB).min(total);
+                let end = (start + FACES_PER_JOB).min(face_count);
                 tetray_wide::run(
                     wide,
                     #[inline(always)]
