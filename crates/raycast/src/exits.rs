@@ -33,11 +33,15 @@ pub(crate) struct Lanes<const N: usize> {
     /// order).
     id: [[u32; N]; 4],
     edge: [[f64; N]; 3],
-    /// The vertex opposite each lane's face in its current cell.
+    /// The vertex opposite each lane's face in its current cell. Its depth
+    /// and scalar are kept as the f32 values the projection gives, widened
+    /// to f64 as the exits read them (the same values, one conversion per
+    /// four lanes); its position, which the exits' edge functions start
+    /// from, is kept widened.
     apex_x: [f64; N],
     apex_y: [f64; N],
-    apex_z: [f64; N],
-    apex_s: [f64; N],
+    apex_z: [f32; N],
+    apex_s: [f32; N],
     apex_id: [u32; N],
     /// 1 where lane `i`'s ray is leaving its cell this round, else 0: a
     /// byte per lane, so that a lane's flag is one store, where a bit of a
@@ -118,8 +122,8 @@ impl<const N: usize> Lanes<N> {
     pub fn set_apex(&mut self, lane: usize, apex: Vertex) {
         self.apex_x[lane] = apex.x;
         self.apex_y[lane] = apex.y;
-        self.apex_z[lane] = f64::from(apex.z);
-        self.apex_s[lane] = f64::from(apex.s);
+        self.apex_z[lane] = apex.z;
+        self.apex_s[lane] = apex.s;
         self.apex_id[lane] = apex.id;
         self.leaving[lane] = 1;
     }
@@ -151,8 +155,8 @@ impl<const N: usize> Lanes<N> {
             let apex = Vertex {
                 x: self.apex_x[lane],
                 y: self.apex_y[lane],
-                z: self.apex_z[lane] as f32,
-                s: self.apex_s[lane] as f32,
+                z: self.apex_z[lane],
+                s: self.apex_s[lane],
                 id: self.apex_id[lane],
             };
             let exit = face.exit(apex)?;
@@ -200,8 +204,12 @@ impl<const N: usize> Lanes<N> {
         let k = usize::from(k & 3);
         let (next, prev) = (FOLLOWING[k], PRECEDING[k]);
         let w = [self.edge[next][i], -e[prev], e[next]];
-        let z = [self.apex_z[i], self.z[next][i], self.z[prev][i]].map(|z| z as f32);
-        let s = [self.apex_s[i], self.s[next][i], self.s[prev][i]];
+        let z = [
+            self.apex_z[i],
+            self.z[next][i] as f32,
+            self.z[prev][i] as f32,
+        ];
+        let s = [f64::from(self.apex_s[i]), self.s[next][i], self.s[prev][i]];
         let sum = w[0] + w[1] + w[2];
         if sum == 0.0 {
             self.alone[i] = 1;
@@ -222,8 +230,8 @@ impl<const N: usize> Lanes<N> {
         // The apex takes slot k, as Face::exit.
         self.x[k][i] = dx;
         self.y[k][i] = dy;
-        self.z[k][i] = self.apex_z[i];
-        self.s[k][i] = self.apex_s[i];
+        self.z[k][i] = f64::from(self.apex_z[i]);
+        self.s[k][i] = f64::from(self.apex_s[i]);
         self.edge[k][i] = e[next];
         self.edge[prev][i] = -e[prev];
     }
@@ -281,6 +289,7 @@ impl<const N: usize> Lanes<N> {
     fn exits_avx2(&mut self, avx2: Wide, i: usize) {
         let zero = avx2.splat(0.0);
         let load = |a: &[f64; N]| avx2.load(a, i);
+        let widen = |a: &[f32; N]| avx2.load_f32(a, i);
         let (dx, dy) = (load(&self.apex_x), load(&self.apex_y));
         let slots = |a: &[[f64; N]; 3]| [load(&a[0]), load(&a[1]), load(&a[2])];
         let (xs, ys) = (slots(&self.x), slots(&self.y));
@@ -296,8 +305,8 @@ impl<const N: usize> Lanes<N> {
         let edge_next = next(slots(&self.edge));
         let w = [edge_next, negated, e_next];
         let (zs, ss) = (slots(&self.z), slots(&self.s));
-        let z = [load(&self.apex_z), next(zs), prev(zs)];
-        let s = [load(&self.apex_s), next(ss), prev(ss)];
+        let z = [widen(&self.apex_z), next(zs), prev(zs)];
+        let s = [widen(&self.apex_s), next(ss), prev(ss)];
         // min_f32(a, b) is `b < a ? b : a`: SSE's min(b, a).
         let lo = z[2].min(z[1].min(z[0]));
         let hi = z[2].max(z[1].max(z[0]));

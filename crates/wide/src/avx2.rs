@@ -31,6 +31,14 @@ impl Avx2 {
         F64x4(unsafe { _mm256_loadu_pd(lanes.as_ptr()) })
     }
 
+    /// Lanes `i..i + 4` of `a` widened to f64 (exactly).
+    #[inline(always)]
+    pub fn load_f32(self, a: &[f32], i: usize) -> F64x4 {
+        let lanes: &[f32; 4] = a[i..i + 4].try_into().expect("four lanes");
+        // SAFETY: as `load`.
+        F64x4(unsafe { _mm256_cvtps_pd(_mm_loadu_ps(lanes.as_ptr())) })
+    }
+
     /// Lanes `i..i + 4` of `a`, each below 2^31, as f64 (exactly).
     #[inline(always)]
     pub fn load_u32(self, a: &[u32], i: usize) -> F64x4 {
