@@ -500,25 +500,24 @@ impl<S: Copy + Default> Walker<S> {
         let sample_in = self.sample_in;
         let t_out = max_f32(t_exit, t_in);
         let sample_out = integrator.sample_near(s_out, &sample_in);
-        let mut integrate = false;
         // `t_out > t_in && t_out > 0` in one comparison (both false for a
         // NaN).
         let near = max_f32(t_in, 0.0);
-        if t_out > near {
-            // Clip at the ray origin; the scalar is linear along the
-            // segment, so interpolating it there is exact.
-            let front = if t_in < 0.0 {
-                integrator.sample(s_in + (s_out - s_in) * (-t_in / (t_out - t_in)))
-            } else {
-                sample_in
-            };
-            *segment = SampledSegment {
-                front,
-                back: sample_out,
-                length: t_out - near,
-            };
-            integrate = true;
-        }
+        let integrate = t_out > near;
+        // Clip at the ray origin; the scalar is linear along the segment,
+        // so interpolating it there is exact.
+        let front = if t_in < 0.0 && integrate {
+            integrator.sample(s_in + (s_out - s_in) * (-t_in / (t_out - t_in)))
+        } else {
+            sample_in
+        };
+        // Written whether integrated or not: the caller reads it only if
+        // it is, and the write takes no branch.
+        *segment = SampledSegment {
+            front,
+            back: sample_out,
+            length: t_out - near,
+        };
         self.t_in = t_out;
         self.s_in = s_out;
         self.sample_in = sample_out;
