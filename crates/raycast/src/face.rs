@@ -30,9 +30,10 @@ impl Vertex {
     #[inline(always)]
     pub fn load(points: &[[f32; 4]], ray: &Projector, id: u32) -> Vertex {
         let (p, s) = ray.project_keep_w(Vec4::from_array(points[id as usize]));
+        let [x, y] = lanes::widen_pair(p.to_array());
         Vertex {
-            x: f64::from(p.x),
-            y: f64::from(p.y),
+            x,
+            y,
             z: p.z,
             s,
             id,

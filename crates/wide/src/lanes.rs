@@ -6,8 +6,9 @@
 
 #[cfg(target_arch = "x86_64")]
 use std::arch::x86_64::{
-    __m128d, _mm_castsi128_ps, _mm_cmpgt_pd, _mm_cmplt_epi32, _mm_loadu_si128, _mm_movemask_pd,
-    _mm_movemask_ps, _mm_set_pd, _mm_set1_epi32, _mm_setzero_pd,
+    __m128d, _mm_castsi128_ps, _mm_cmpgt_pd, _mm_cmplt_epi32, _mm_cvtps_pd, _mm_loadu_ps,
+    _mm_loadu_si128, _mm_movemask_pd, _mm_movemask_ps, _mm_set_pd, _mm_set1_epi32, _mm_setzero_pd,
+    _mm_storeu_pd,
 };
 
 /// Bit `i` set where `v[i] > 0` (false for a NaN and for either zero).
@@ -40,6 +41,22 @@ pub fn count_below(v: [u32; 4], x: u32) -> u32 {
     }
     #[cfg(not(target_arch = "x86_64"))]
     v.iter().map(|&lane| u32::from(lane < x)).sum()
+}
+
+/// The first two lanes of `v` widened to f64 (exactly): one conversion of
+/// both on x86-64, where two scalar conversions take a shuffle between.
+#[inline(always)]
+pub fn widen_pair(v: [f32; 4]) -> [f64; 2] {
+    #[cfg(target_arch = "x86_64")]
+    {
+        let mut pair = [0.0; 2];
+        // SAFETY: as in `positive_mask`; the load reads the four lanes of
+        // `v` and the store writes the two of `pair`.
+        unsafe { _mm_storeu_pd(pair.as_mut_ptr(), _mm_cvtps_pd(_mm_loadu_ps(v.as_ptr()))) };
+        pair
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    [f64::from(v[0]), f64::from(v[1])]
 }
 
 /// The mask of `compare(lanes, 0)` over the four lanes of `v`, two at a
@@ -110,6 +127,32 @@ mod tests {
             let expected = v.iter().filter(|&&lane| lane < x).count() as u32;
             for wide in [false, true] {
                 assert_eq!(crate::run(wide, || count_below(v, x)), expected, "{x:#x}");
+            }
+        }
+    }
+
+    /// The pair is each lane's own widening, bit for bit, for special
+    /// values (a subnormal, both zeros, infinities, a NaN) and ordinary
+    /// ones, in both builds.
+    #[test]
+    fn widen_pair_is_each_lane_widened() {
+        let special = [
+            0.0,
+            -0.0,
+            1.5,
+            -3.25e-7,
+            f32::MIN_POSITIVE * 0.25,
+            f32::MAX,
+            f32::NEG_INFINITY,
+            f32::NAN,
+        ];
+        for (i, &x) in special.iter().enumerate() {
+            for &y in &special[i..] {
+                for wide in [false, true] {
+                    let pair = crate::run(wide, || widen_pair([x, y, 7.0, f32::NAN]));
+                    let bits = pair.map(f64::to_bits);
+                    assert_eq!(bits, [f64::from(x), f64::from(y)].map(f64::to_bits));
+                }
             }
         }
     }
