@@ -9,6 +9,7 @@
 //! [`Material`], the table and sampling methods as the bare scalar.
 
 use glam::{Vec3A, Vec4};
+use tetray_wide::Wide;
 
 use crate::average::{average_opacity_weights, average_weights, average_weights_lanes};
 use crate::exact::{exact_weights, exact_weights_lanes};
@@ -29,7 +30,9 @@ pub trait WeightKernel: Sync {
     /// lane where bit `i` of `live` is set, anything elsewhere (a kernel may
     /// compute every lane as vector arithmetic; this one skips the lanes
     /// that are not live, which pays where a lane's weights cost more than
-    /// the branch).
+    /// the branch). `wide` is the token of the AVX2 vectors where the caller
+    /// runs the x86-64-v3 build ([`tetray_wide::token`]); the bits are the
+    /// same without it.
     #[inline(always)]
     fn weights_lanes<const N: usize>(
         &self,
@@ -37,6 +40,7 @@ pub trait WeightKernel: Sync {
         front: &[f32; N],
         length: &[f32; N],
         live: u32,
+        _wide: Option<Wide>,
     ) -> [Weights; N] {
         std::array::from_fn(|i| {
             if live >> i & 1 == 0 {
@@ -96,8 +100,9 @@ impl WeightKernel for Ppi<'_> {
         front: &[f32; N],
         _length: &[f32; N],
         _live: u32,
+        wide: Option<Wide>,
     ) -> [Weights; N] {
-        ppi_weights_lanes(self.table, back, front)
+        ppi_weights_lanes(self.table, back, front, wide)
     }
 }
 
@@ -114,6 +119,7 @@ impl WeightKernel for Exact {
         front: &[f32; N],
         _length: &[f32; N],
         live: u32,
+        _wide: Option<Wide>,
     ) -> [Weights; N] {
         exact_weights_lanes(back, front, live)
     }
@@ -133,6 +139,7 @@ impl WeightKernel for Average {
         front: &[f32; N],
         _length: &[f32; N],
         _live: u32,
+        _wide: Option<Wide>,
     ) -> [Weights; N] {
         average_weights_lanes(back, front)
     }
@@ -194,8 +201,9 @@ pub trait SegmentKernel: Sync {
     /// The light of `N` segments, one per ray in flight, written into
     /// `lights`: lane `i` as [`Typed::integrate_samples`] would give it
     /// where bit `i` of `live` is set, anything elsewhere. A kernel may
-    /// integrate its lanes together. (Written in place: an array of lights
-    /// returned by value is copied whole on the way out.)
+    /// integrate its lanes together, with the AVX2 vectors where `wide`
+    /// holds their token (the same bits). (Written in place: an array of
+    /// lights returned by value is copied whole on the way out.)
     #[inline(always)]
     fn segments<const N: usize>(
         &self,
@@ -203,6 +211,7 @@ pub trait SegmentKernel: Sync {
         batch: &[SampledSegment<Self::Sample>; N],
         live: u32,
         lights: &mut [SegmentLight; N],
+        _wide: Option<Wide>,
     ) {
         for (i, (light, s)) in lights.iter_mut().zip(batch).enumerate() {
             *light = if live >> i & 1 == 0 || !carries_material(s.length) {
@@ -287,13 +296,16 @@ impl<W: WeightKernel> SegmentKernel for Grey<'_, W> {
         batch: &[SampledSegment<GreySample>; N],
         live: u32,
         lights: &mut [SegmentLight; N],
+        wide: Option<Wide>,
     ) {
         let scale = |i: usize| if W::TAU { batch[i].length } else { 1.0 };
         let back: [f32; N] = std::array::from_fn(|i| batch[i].back.material.w * scale(i));
         let front: [f32; N] = std::array::from_fn(|i| batch[i].front.material.w * scale(i));
         // By index: `batch.map` would copy the whole batch first.
         let length: [f32; N] = std::array::from_fn(|i| batch[i].length);
-        let weights = self.kernel.weights_lanes(&back, &front, &length, live);
+        let weights = self
+            .kernel
+            .weights_lanes(&back, &front, &length, live, wide);
         // Every lane's light, live or not, so that the lanes' arithmetic
         // stays in vectors; then the rare lane without material or across
         // a knot is redone alone.
@@ -521,15 +533,17 @@ impl<K: SegmentKernel> Typed<'_, K> {
     }
 
     /// [`Typed::integrate_samples`] of the segments of several rays at
-    /// once: lane `i` where bit `i` of `live` is set, anything elsewhere.
+    /// once: lane `i` where bit `i` of `live` is set, anything elsewhere;
+    /// `wide` as in [`SegmentKernel::segments`].
     #[inline(always)]
     pub fn integrate_batch<const N: usize>(
         &self,
         batch: &[SampledSegment<K::Sample>; N],
         live: u32,
         lights: &mut [SegmentLight; N],
+        wide: Option<Wide>,
     ) {
-        self.kernel.segments(self.knots, batch, live, lights)
+        self.kernel.segments(self.knots, batch, live, lights, wide)
     }
 }
 

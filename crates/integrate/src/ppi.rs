@@ -3,6 +3,7 @@
 //! table of [`crate::psi::PsiTable`].
 
 use glam::Vec4;
+use tetray_wide::Wide;
 
 use crate::fastmath::{by_fours, clamp_f32, exp_f32, exp_f32_select};
 use crate::psi::PsiTable;
@@ -20,18 +21,20 @@ pub fn ppi_weights(table: &PsiTable, tau_d_back: f32, tau_d_front: f32) -> Weigh
 }
 
 /// [`ppi_weights`] of `N` segments at once, the same bits per lane: the
-/// exponentials and table coordinates of all lanes as vector arithmetic.
+/// exponentials and table coordinates of all lanes as vector arithmetic,
+/// the table read by AVX2 gathers where `wide` holds their token.
 #[inline(always)]
 pub fn ppi_weights_lanes<const N: usize>(
     table: &PsiTable,
     tau_d_back: &[f32; N],
     tau_d_front: &[f32; N],
+    wide: Option<Wide>,
 ) -> [Weights; N] {
     let mut zeta = [0.0f32; N];
     for ((z, &b), &f) in zeta.iter_mut().zip(tau_d_back).zip(tau_d_front) {
         *z = exp_f32_select(-0.5 * (b + f));
     }
-    let psi = table.lookup_lanes(tau_d_back, tau_d_front);
+    let psi = table.lookup_lanes(tau_d_back, tau_d_front, wide);
     // `clamp_f32(psi, zeta, 1)` as the SSE max and min (each the second
     // operand when unordered): the same bits whenever `zeta <= 1`, which
     // non-negative attenuations guarantee.
@@ -70,16 +73,19 @@ mod tests {
             for (k, back) in values.chunks_exact(16).enumerate() {
                 let back: [f32; 16] = back.try_into().expect("16 lanes");
                 let front = std::array::from_fn(|i| values[(k * 11 + i * 7 + 3) % values.len()]);
-                let lanes = ppi_weights_lanes(&table, &back, &front);
-                for i in 0..16 {
-                    let single = ppi_weights(&table, back[i], front[i]);
-                    assert_eq!(
-                        (lanes[i].zeta.to_bits(), lanes[i].psi.to_bits()),
-                        (single.zeta.to_bits(), single.psi.to_bits()),
-                        "{spacing:?} at ({}, {})",
-                        back[i],
-                        front[i]
-                    );
+                for wide in [None, tetray_wide::token(true)] {
+                    let lanes =
+                        tetray_wide::run(true, || ppi_weights_lanes(&table, &back, &front, wide));
+                    for i in 0..16 {
+                        let single = ppi_weights(&table, back[i], front[i]);
+                        assert_eq!(
+                            (lanes[i].zeta.to_bits(), lanes[i].psi.to_bits()),
+                            (single.zeta.to_bits(), single.psi.to_bits()),
+                            "{spacing:?} at ({}, {})",
+                            back[i],
+                            front[i]
+                        );
+                    }
                 }
             }
         }

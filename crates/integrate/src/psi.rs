@@ -11,6 +11,7 @@
 
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
+use tetray_wide::Wide;
 
 use rayon::prelude::*;
 
@@ -277,12 +278,14 @@ impl PsiTable {
     /// [`PsiTable::lookup`] of `N` segments at once, lane by lane with its
     /// operations (so its bits), written as loops over the lanes so that
     /// the coordinates vectorize (eight lanes at a time with AVX); the four
-    /// table reads per lane are scalar.
+    /// table reads per lane are AVX2 gathers of eight lanes where `wide`
+    /// holds their token, else scalar.
     #[inline(always)]
     pub fn lookup_lanes<const N: usize>(
         &self,
         tau_d_back: &[f32; N],
         tau_d_front: &[f32; N],
+        wide: Option<Wide>,
     ) -> [f32; N] {
         let mut x = [0.0f32; N];
         let mut y = [0.0f32; N];
@@ -301,19 +304,57 @@ impl PsiTable {
         // the index: the check is the end against the length alone.
         let row = self.size as u32;
         let (n, span) = (row as usize, row as usize + 2);
-        let mut near = [[0.0f32; 2]; N];
-        let mut far = [[0.0f32; 2]; N];
+        let mut corner = [0u32; N];
         for k in 0..N {
-            let base = j[k].wrapping_mul(row).wrapping_add(i[k]) as usize;
-            let rows = &self.values[base..base + span];
-            near[k] = [rows[0], rows[1]];
-            far[k] = [rows[n], rows[n + 1]];
+            corner[k] = j[k].wrapping_mul(row).wrapping_add(i[k]);
+        }
+        // The nodes lane by lane: `near` the cell's lower row, `far` its
+        // upper one.
+        let mut nodes = [[0.0f32; N]; 4];
+        if !self.gather_nodes(&corner, &mut nodes, wide) {
+            for k in 0..N {
+                let base = corner[k] as usize;
+                let rows = &self.values[base..base + span];
+                [nodes[0][k], nodes[1][k]] = [rows[0], rows[1]];
+                [nodes[2][k], nodes[3][k]] = [rows[n], rows[n + 1]];
+            }
         }
         let mut out = [0.0f32; N];
         for k in 0..N {
-            out[k] = bilinear_in_cell(near[k], far[k], fx[k], fy[k]);
+            let near = [nodes[0][k], nodes[1][k]];
+            let far = [nodes[2][k], nodes[3][k]];
+            out[k] = bilinear_in_cell(near, far, fx[k], fy[k]);
         }
         out
+    }
+
+    /// The nodes of the cells at `corner` (see [`PsiTable::lookup_lanes`]),
+    /// eight lanes to an AVX2 gather where the caller holds the token;
+    /// false where they are left to the caller.
+    #[inline(always)]
+    fn gather_nodes<const N: usize>(
+        &self,
+        corner: &[u32; N],
+        nodes: &mut [[f32; N]; 4],
+        wide: Option<Wide>,
+    ) -> bool {
+        #[cfg(target_arch = "x86_64")]
+        if let Some(avx2) = wide
+            && N.is_multiple_of(8)
+        {
+            for q in 0..N / 8 {
+                let lanes: &[u32; 8] = corner[8 * q..8 * q + 8].try_into().expect("eight lanes");
+                let Some(cell) = avx2.gather_cells(&self.values, lanes, self.size as u32) else {
+                    return false;
+                };
+                for (node, values) in nodes.iter_mut().zip(cell) {
+                    node[8 * q..8 * q + 8].copy_from_slice(&values);
+                }
+            }
+            return true;
+        }
+        let _ = (corner, nodes, wide);
+        false
     }
 
     /// Bilinear lookup by `(gamma_b, gamma_f)` in `[0, 1]`.
@@ -470,10 +511,12 @@ mod tests {
             for (k, back) in values.chunks_exact(8).enumerate() {
                 let back: [f32; 8] = back.try_into().expect("8 lanes");
                 let front = std::array::from_fn(|i| values[(k * 13 + i * 5 + 1) % values.len()]);
-                let lanes = table.lookup_lanes(&back, &front);
-                for i in 0..8 {
-                    let single = table.lookup(back[i], front[i]);
-                    assert_eq!(lanes[i].to_bits(), single.to_bits(), "{spacing:?} lane {i}");
+                for wide in [None, tetray_wide::token(true)] {
+                    let lanes = tetray_wide::run(true, || table.lookup_lanes(&back, &front, wide));
+                    for i in 0..8 {
+                        let single = table.lookup(back[i], front[i]);
+                        assert_eq!(lanes[i].to_bits(), single.to_bits(), "{spacing:?} lane {i}");
+                    }
                 }
             }
         }

@@ -543,7 +543,7 @@ impl<I: SegmentIntegrator + ?Sized> Frame<'_, I> {
                 }
                 live |= u32::from(integrate) << i;
             }
-            integrator.segments(&batch, live, &mut lights);
+            integrator.segments(&batch, live, &mut lights, wide);
             for (i, (walker, index)) in slots.iter_mut().enumerate() {
                 let light =
                     (live >> i & 1 != 0).then(|| (lights[i].emitted, lights[i].transmittance));

@@ -256,26 +256,12 @@ fn gather_bits(bytes: u32) -> u32 {
 }
 
 /// The token of the wide exits ([`Lanes::exits`]): where the CPU has AVX2.
-#[cfg(target_arch = "x86_64")]
-pub(crate) type Wide = tetray_wide::avx2::Avx2;
-/// No wide exits off x86-64.
-#[cfg(not(target_arch = "x86_64"))]
-pub(crate) type Wide = std::convert::Infallible;
+pub(crate) use tetray_wide::Wide;
 
 /// The token of the wide exits where the walk runs compiled for
 /// x86-64-v3 (`wide`, see [`tetray_wide::run`]).
 pub(crate) fn wide_exits(wide: bool) -> Option<Wide> {
-    #[cfg(target_arch = "x86_64")]
-    return if wide {
-        tetray_wide::avx2::Avx2::detect()
-    } else {
-        None
-    };
-    #[cfg(not(target_arch = "x86_64"))]
-    {
-        let _ = wide;
-        None
-    }
+    tetray_wide::token(wide)
 }
 
 #[cfg(target_arch = "x86_64")]

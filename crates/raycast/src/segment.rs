@@ -3,6 +3,7 @@
 
 use glam::Vec3A;
 use tetray_integrate::{SampledSegment, SegmentLight};
+use tetray_wide::Wide;
 
 /// The light of one ray segment, front (nearer the eye) to back.
 ///
@@ -32,13 +33,15 @@ pub trait SegmentIntegrator: Sync {
     /// [`SegmentIntegrator::segment`] of the segments of several rays in
     /// flight, written into `lights`: lane `i` where bit `i` of `live` is
     /// set, anything elsewhere. An integrator may integrate its lanes
-    /// together, to the same bits.
+    /// together, to the same bits, with the AVX2 vectors where `wide`
+    /// holds their token ([`tetray_wide::token`]).
     #[inline(always)]
     fn segments<const N: usize>(
         &self,
         batch: &[SampledSegment<Self::Sample>; N],
         live: u32,
         lights: &mut [SegmentLight; N],
+        _wide: Option<Wide>,
     ) {
         for (i, (light, s)) in lights.iter_mut().zip(batch).enumerate() {
             *light = if live >> i & 1 == 0 {
@@ -82,7 +85,8 @@ impl<K: tetray_integrate::SegmentKernel> SegmentIntegrator for tetray_integrate:
         batch: &[SampledSegment<Self::Sample>; N],
         live: u32,
         lights: &mut [SegmentLight; N],
+        wide: Option<Wide>,
     ) {
-        self.integrate_batch(batch, live, lights)
+        self.integrate_batch(batch, live, lights, wide)
     }
 }

@@ -1,7 +1,8 @@
-//! Four f64 lanes in one AVX2 register ([`F64x4`]), safe to use because
-//! one exists only where the CPU has AVX2: every value is made through an
-//! [`Avx2`] token, which [`Avx2::detect`] returns only after detecting the
-//! features. The operations are the IEEE ones of scalar f64 code lane by
+//! Four f64 lanes in one AVX2 register ([`F64x4`]), and the cells of a
+//! table gathered eight lanes at a time ([`Avx2::gather_cells`]), safe to
+//! use because they exist only where the CPU has AVX2: every value is made
+//! through an [`Avx2`] token, which [`Avx2::detect`] returns only after
+//! detecting the features. The operations are the IEEE ones of scalar f64 code lane by
 //! lane (no fused multiply-add), so the bits are the scalar code's.
 //!
 //! Inlined into [`crate::run`]'s x86-64-v3 copy, each operation is one
@@ -218,6 +219,49 @@ impl F64x4 {
     }
 }
 
+impl Avx2 {
+    /// The four values of the table cell of each of eight lanes, read with
+    /// AVX2 gathers (four in all, where each lane took four loads):
+    /// `values[c]`, `values[c + 1]`, `values[c + row]` and
+    /// `values[c + row + 1]` for the lane's corner `c = corner[k]`, in that
+    /// order; `None` where some lane's cell would reach past `values`.
+    #[inline(always)]
+    pub fn gather_cells(
+        self,
+        values: &[f32],
+        corner: &[u32; 8],
+        row: u32,
+    ) -> Option<[[f32; 8]; 4]> {
+        // The largest corner whose cell fits, also within the gathers'
+        // signed 32-bit offsets.
+        let last = values.len().checked_sub(row as usize + 2)?;
+        let last =
+            u32::try_from(last.min((i32::MAX as usize).saturating_sub(row as usize + 1))).ok()?;
+        let mut cell = [[0.0f32; 8]; 4];
+        // SAFETY: the token proves AVX2. Every corner is at most `last`
+        // (checked below before any gather), so every offset read,
+        // `corner + row + 1` at most, is within `values` and fits in i32;
+        // the stores write the four arrays of `cell`.
+        unsafe {
+            let corners = _mm256_loadu_si256(corner.as_ptr().cast());
+            let limit = _mm256_set1_epi32(last as i32);
+            let within = _mm256_cmpeq_epi32(_mm256_max_epu32(corners, limit), limit);
+            if _mm256_movemask_epi8(within) != -1 {
+                return None;
+            }
+            let base = values.as_ptr();
+            for (k, offset) in [0, 1, row as usize, row as usize + 1]
+                .into_iter()
+                .enumerate()
+            {
+                let lanes = _mm256_i32gather_ps::<4>(base.add(offset), corners);
+                _mm256_storeu_ps(cell[k].as_mut_ptr(), lanes);
+            }
+        }
+        Some(cell)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -309,5 +353,29 @@ mod tests {
                 assert_eq!(got.5, [0.0, 1.0, 2_147_483_646.0, 2_147_483_647.0]);
             }
         }
+    }
+
+    /// The gathered nodes are the table's values at each lane's cell, and
+    /// a cell reaching past the table is refused, not read.
+    #[test]
+    fn gather_cells_reads_each_lanes_cell() {
+        let Some(avx2) = Avx2::detect() else {
+            eprintln!("note: this CPU lacks AVX2; the gathers were not run");
+            return;
+        };
+        let row = 7u32;
+        let values: Vec<f32> = (0..row * row).map(|v| v as f32 * 0.5 - 3.0).collect();
+        // The last corner whose cell fits is `row^2 - row - 2`.
+        let last = row * row - row - 2;
+        let corners = [0, 1, 5, 8, 20, 33, last - 1, last];
+        let cell = crate::run(true, || avx2.gather_cells(&values, &corners, row)).expect("cells");
+        for (k, &c) in corners.iter().enumerate() {
+            let c = c as usize;
+            let expected = [c, c + 1, c + row as usize, c + row as usize + 1].map(|i| values[i]);
+            assert_eq!([0, 1, 2, 3].map(|node| cell[node][k]), expected, "lane {k}");
+        }
+        let past = [0, 1, 2, 3, 4, 5, 6, last + 1];
+        assert!(avx2.gather_cells(&values, &past, row).is_none());
+        assert!(avx2.gather_cells(&values[..3], &[0; 8], row).is_none());
     }
 }

@@ -16,6 +16,27 @@
 pub mod avx2;
 pub mod lanes;
 
+/// Proof that code may use AVX2 ([`avx2::Avx2`]); off x86-64 a type with
+/// no values, so an `Option<Wide>` there is always `None`.
+#[cfg(target_arch = "x86_64")]
+pub type Wide = avx2::Avx2;
+/// No AVX2 off x86-64.
+#[cfg(not(target_arch = "x86_64"))]
+pub type Wide = std::convert::Infallible;
+
+/// The token of the vectors where the caller runs [`run`]'s x86-64-v3 copy
+/// (`wide`, as passed to [`run`]) on a CPU that has it; `None` otherwise,
+/// and the caller takes its scalar path (the same bits).
+pub fn token(wide: bool) -> Option<Wide> {
+    #[cfg(target_arch = "x86_64")]
+    return if wide { avx2::Avx2::detect() } else { None };
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        let _ = wide;
+        None
+    }
+}
+
 /// Whether [`run`] takes the x86-64-v3 copy: on a CPU with the features,
 /// unless the environment variable `TETRAY_CPU_BASELINE` is set (to time
 /// the two builds against each other).
