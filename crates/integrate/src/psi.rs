@@ -311,7 +311,7 @@ impl PsiTable {
         // The nodes lane by lane: `near` the cell's lower row, `far` its
         // upper one.
         let mut nodes = [[0.0f32; N]; 4];
-        if !self.gather_nodes(&corner, &mut nodes, wide) {
+        if !self.gather_nodes(&corner, row, &mut nodes, wide) {
             for k in 0..N {
                 let base = corner[k] as usize;
                 let rows = &self.values[base..base + span];
@@ -328,13 +328,14 @@ impl PsiTable {
         out
     }
 
-    /// The nodes of the cells at `corner` (see [`PsiTable::lookup_lanes`]),
-    /// eight lanes to an AVX2 gather where the caller holds the token;
-    /// false where they are left to the caller.
+    /// The nodes of the cells at `corner` in rows of `row` values (see
+    /// [`PsiTable::lookup_lanes`]), eight lanes to an AVX2 gather where the
+    /// caller holds the token; false where they are left to the caller.
     #[inline(always)]
     fn gather_nodes<const N: usize>(
         &self,
         corner: &[u32; N],
+        row: u32,
         nodes: &mut [[f32; N]; 4],
         wide: Option<Wide>,
     ) -> bool {
@@ -344,7 +345,7 @@ impl PsiTable {
         {
             for q in 0..N / 8 {
                 let lanes: &[u32; 8] = corner[8 * q..8 * q + 8].try_into().expect("eight lanes");
-                let Some(cell) = avx2.gather_cells(&self.values, lanes, self.size as u32) else {
+                let Some(cell) = avx2.gather_cells(&self.values, lanes, row) else {
                     return false;
                 };
                 for (node, values) in nodes.iter_mut().zip(cell) {
@@ -353,7 +354,7 @@ impl PsiTable {
             }
             return true;
         }
-        let _ = (corner, nodes, wide);
+        let _ = (corner, row, nodes, wide);
         false
     }
 

@@ -15,7 +15,7 @@ use tetray_core::camera::{Camera, CameraError, PixelRays};
 use tetray_core::image::{Image, ImageError};
 
 use crate::entries::EntryBins;
-use crate::exits::{Lanes, wide_exits};
+use crate::exits::Lanes;
 use crate::segment::SegmentIntegrator;
 use crate::walk::{Cells, RayCounters, WalkLimits, Walker};
 use tetray_scene::Scene;
@@ -529,7 +529,7 @@ impl<I: SegmentIntegrator + ?Sized> Frame<'_, I> {
         let (scene, integrator, limits) = (self.scene, self.integrator, self.limits);
         let cells = Cells::of(scene);
         let mut lanes = Lanes::<N>::new();
-        let wide = wide_exits(self.wide);
+        let wide = tetray_wide::token(self.wide);
         for (i, (walker, _)) in slots.iter_mut().enumerate() {
             walker.begin::<PREFETCH, N, _>(scene, cells, integrator, limits, &mut lanes, i);
         }

@@ -17,7 +17,7 @@ use crate::face::{FOLLOWING, Face, LEFT_OUT_SLOT, NONE, PRECEDING, Vertex};
 use tetray_integrate::fastmath::{clamp_f32, max_f32, min_f32};
 #[cfg(target_arch = "x86_64")]
 use tetray_wide::avx2::F64x4;
-use tetray_wide::lanes;
+use tetray_wide::{Wide, lanes};
 
 /// The faces, the new vertices and the exits of `N` rays.
 #[derive(Clone)]
@@ -255,15 +255,6 @@ fn gather_bits(bytes: u32) -> u32 {
     bytes.wrapping_mul(0x1020_4080) >> 28
 }
 
-/// The token of the wide exits ([`Lanes::exits`]): where the CPU has AVX2.
-pub(crate) use tetray_wide::Wide;
-
-/// The token of the wide exits where the walk runs compiled for
-/// x86-64-v3 (`wide`, see [`tetray_wide::run`]).
-pub(crate) fn wide_exits(wide: bool) -> Option<Wide> {
-    tetray_wide::token(wide)
-}
-
 #[cfg(target_arch = "x86_64")]
 impl<const N: usize> Lanes<N> {
     /// [`Lanes::exit_lane`] of lanes `i..i + 4` at once, in AVX2 vectors
@@ -422,7 +413,7 @@ mod tests {
                     expected.push(Some((exit, after)));
                 }
             }
-            tetray_wide::run(wide, || lanes.exits(wide_exits(wide)));
+            tetray_wide::run(wide, || lanes.exits(tetray_wide::token(wide)));
             // Quads whose four lanes all leave (the whole faces written).
             whole += (0..N / 4)
                 .filter(|q| {

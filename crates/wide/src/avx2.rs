@@ -2,8 +2,9 @@
 //! table gathered eight lanes at a time ([`Avx2::gather_cells`]), safe to
 //! use because they exist only where the CPU has AVX2: every value is made
 //! through an [`Avx2`] token, which [`Avx2::detect`] returns only after
-//! detecting the features. The operations are the IEEE ones of scalar f64 code lane by
-//! lane (no fused multiply-add), so the bits are the scalar code's.
+//! detecting the features. The operations are the IEEE ones of scalar f64
+//! code lane by lane (no fused multiply-add), so the bits are the scalar
+//! code's.
 //!
 //! Inlined into [`crate::run`]'s x86-64-v3 copy, each operation is one
 //! instruction; elsewhere it is a call (correct, slower).
