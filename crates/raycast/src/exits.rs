@@ -54,9 +54,6 @@ pub(crate) struct Lanes<const N: usize> {
     t: [f32; N],
     value: [f32; N],
     alone: [u8; N],
-    /// Whether [`Lanes::exits`] found the exits of all lanes (else
-    /// [`Lanes::exit`] finds each).
-    found: bool,
 }
 
 impl<const N: usize> Lanes<N> {
@@ -79,7 +76,6 @@ impl<const N: usize> Lanes<N> {
             t: [0.0; N],
             value: [0.0; N],
             alone: [0; N],
-            found: false,
         }
     }
 
@@ -143,13 +139,9 @@ impl<const N: usize> Lanes<N> {
 
     /// [`Face::exit`] of a lane given a vertex since it last rested,
     /// after [`Lanes::exits`], the lane's face now the exit face; `None`
-    /// for a degenerate cell. (Without the vectors, the lane's exit is
-    /// found here.)
+    /// for a degenerate cell.
     #[inline(always)]
     pub fn exit(&mut self, lane: usize) -> Option<(usize, f32, f32)> {
-        if !self.found {
-            self.exit_lane(lane);
-        }
         if self.alone[lane] != 0 {
             let mut face = self.face(lane);
             let apex = Vertex {
@@ -168,12 +160,10 @@ impl<const N: usize> Lanes<N> {
 
     /// The exits of the live lanes, read by [`Lanes::exit`] (see the
     /// module's comment for the lanes left alone): four lanes to an AVX2
-    /// vector where the caller holds the token; else each lane's when
-    /// [`Lanes::exit`] asks for it (one pass over the rays fewer). The
+    /// vector where the caller holds the token, else lane by lane. The
     /// same bits either way.
     #[inline(always)]
     pub fn exits(&mut self, wide: Option<Wide>) {
-        self.found = false;
         #[cfg(target_arch = "x86_64")]
         if let Some(avx2) = wide
             && N.is_multiple_of(4)
@@ -181,9 +171,12 @@ impl<const N: usize> Lanes<N> {
             for quad in 0..N / 4 {
                 self.exits_avx2(avx2, 4 * quad);
             }
-            self.found = true;
+            return;
         }
         let _ = wide;
+        for lane in 0..N {
+            self.exit_lane(lane);
+        }
     }
 
     /// [`Lanes::exits`] of lane `i` alone, if it is leaving: the steps of
