@@ -87,12 +87,13 @@ pub(crate) struct Interval {
 enum Phase {
     /// Between entries: the next step asks the BVH where the ray enters.
     Entering,
-    /// Inside the mesh, in `Walker::tet`.
+    /// Inside the mesh, in `Walker::tet`; from [`Walker::leave`] to
+    /// [`Walker::end`], half-way through a step: the exit is found, the
+    /// segment is classified and integrated, and its light composited
+    /// before the ray moves to `Walker::crossing` (a cell with no exit
+    /// ends the walk instead, so a walking ray at [`Walker::end`] has
+    /// its exit).
     Walking,
-    /// Half-way through a step: the exit is found; the segment is
-    /// classified and integrated, and its light composited
-    /// ([`Walker::end`]) before the ray moves to `Walker::crossing`.
-    Crossing,
     Done,
 }
 
@@ -292,7 +293,7 @@ impl<S: Copy + Default> Walker<S> {
                     self.apex::<PREFETCH, N>(cells, limits, lanes, lane);
                 }
             }
-            Phase::Crossing | Phase::Done => {}
+            Phase::Done => {}
         }
     }
 
@@ -302,7 +303,7 @@ impl<S: Copy + Default> Walker<S> {
     /// Returns whether the ray goes on.
     #[inline(always)]
     pub fn end(&mut self, light: Option<(Vec3A, Vec3A)>, limits: WalkLimits) -> bool {
-        if self.phase == Phase::Crossing {
+        if self.phase == Phase::Walking {
             self.cross(light, limits);
         }
         self.phase != Phase::Done
@@ -457,7 +458,6 @@ impl<S: Copy + Default> Walker<S> {
         // The exit face is the one opposite the entry face's vertex it
         // leaves out, whose rank among the cell's four names the neighbour.
         self.crossing = self.next[rank & 3];
-        self.phase = Phase::Crossing;
         self.classify(integrator, t_exit, s_out, segment)
     }
 
