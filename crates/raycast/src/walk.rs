@@ -555,6 +555,9 @@ impl<S: Copy + Default> Walker<S> {
             return;
         }
         self.tet = next as usize;
+        // The ray is walking already. The store is kept: without it the
+        // compiler lays the walk out in more instructions (Blunt Fin PPI,
+        // `tools/cpu-instructions`: 291.8 per segment against 288.8).
         self.phase = Phase::Walking;
     }
 }
