@@ -48,8 +48,9 @@ pub(crate) struct Lanes<const N: usize> {
     /// word took a load, a shift and a store.
     leaving: [u8; N],
     /// What [`Lanes::exits`] found: the rank of the vertex the exit face
-    /// leaves out, the distance and the scalar, and 1 where lane `i` is
-    /// left to [`Face::exit`] (else 0).
+    /// leaves out, the distance and the scalar; and 0 where lane `i` has
+    /// them, 1 where it has not (it is resting, or left to [`Face::exit`]),
+    /// so that a lane's exit is found by one test.
     rank: [u32; N],
     t: [f32; N],
     value: [f32; N],
@@ -137,6 +138,15 @@ impl<const N: usize> Lanes<N> {
         self.leaving[lane] = 0;
     }
 
+    /// The exit [`Lanes::exits`] found for `lane` (the rank of the vertex
+    /// the exit face leaves out, the distance and the scalar), if it found
+    /// one: `None` for a resting lane and one left to [`Face::exit`] (see
+    /// [`Lanes::exit`]).
+    #[inline(always)]
+    pub fn found(&self, lane: usize) -> Option<(usize, f32, f32)> {
+        (self.alone[lane] == 0).then(|| (self.rank[lane] as usize, self.t[lane], self.value[lane]))
+    }
+
     /// [`Face::exit`] of a lane given a vertex since it last rested,
     /// after [`Lanes::exits`], the lane's face now the exit face; `None`
     /// for a degenerate cell.
@@ -184,6 +194,7 @@ impl<const N: usize> Lanes<N> {
     #[inline(always)]
     fn exit_lane(&mut self, i: usize) {
         if self.leaving[i] == 0 {
+            self.alone[i] = 1;
             return;
         }
         let (dx, dy) = (self.apex_x[i], self.apex_y[i]);
@@ -300,10 +311,12 @@ impl<const N: usize> Lanes<N> {
         hi.min(lo.max(blend(z).round_f32()))
             .store_f32(&mut self.t, i);
         blend(s).store_f32(&mut self.value, i);
-        let alone_bytes = spread_bits(alone.bits());
-        self.alone[i..i + 4].copy_from_slice(&alone_bytes.to_le_bytes());
         let leaving: [u8; 4] = self.leaving[i..i + 4].try_into().expect("four lanes");
-        let live = avx2.lane_mask(gather_bits(u32::from_le_bytes(leaving)));
+        let leaving = gather_bits(u32::from_le_bytes(leaving));
+        let live = avx2.lane_mask(leaving);
+        // A resting lane has no exit either.
+        let alone_bytes = spread_bits(alone.bits() | !leaving);
+        self.alone[i..i + 4].copy_from_slice(&alone_bytes.to_le_bytes());
         let moves = alone.and_not(live);
         if moves.bits() == 0xf {
             // Every lane leaves: the exit face in the order (apex, next,

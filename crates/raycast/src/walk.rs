@@ -122,12 +122,14 @@ pub(crate) struct Walker<S> {
     /// The ray's entries, where the frame found them all beforehand
     /// ([`crate::entries`]); otherwise the BVH is asked.
     entries: Option<EntryList>,
-    tet: usize,
-    /// The neighbours of `tet` by rank (its record's `next`), copied when
-    /// its vertex is loaded: the exit reads its neighbour here instead of
-    /// indexing the records again.
+    /// The neighbours of the ray's cell by rank (its record's `next`),
+    /// copied when its vertex is loaded: the exit reads its neighbour here
+    /// instead of indexing the records again.
     next: [u32; 4],
-    /// The record's entry across the exit face of the step in progress.
+    /// The cell the ray is in, from its entry or crossing until the step
+    /// finds its exit; from then on the record's entry across the exit
+    /// face (the next cell, or a boundary marker), which the ray crosses
+    /// into at [`Walker::end`].
     crossing: u32,
     t_in: f32,
     s_in: f32,
@@ -160,7 +162,6 @@ impl<S: Copy + Default> Walker<S> {
             skip_t: f32::NAN,
             entry_t: f32::NAN,
             entries: None,
-            tet: 0,
             next: [FINAL_EXIT; 4],
             crossing: FINAL_EXIT,
             t_in: 0.0,
@@ -281,10 +282,12 @@ impl<S: Copy + Default> Walker<S> {
         lanes: &mut Lanes<N>,
         lane: usize,
     ) {
-        lanes.rest(lane);
+        // The lane leaves its cell at the next exits if it is given a
+        // vertex ([`Walker::apex`]), and rests otherwise.
         match self.phase {
             Phase::Walking => self.apex::<PREFETCH, N>(cells, limits, lanes, lane),
             Phase::Entering => {
+                lanes.rest(lane);
                 // The entered cell's vertex in the same stage: the ray's
                 // lane leaves it at the next exits, where it would
                 // otherwise rest a round.
@@ -293,7 +296,7 @@ impl<S: Copy + Default> Walker<S> {
                     self.apex::<PREFETCH, N>(cells, limits, lanes, lane);
                 }
             }
-            Phase::Done => {}
+            Phase::Done => lanes.rest(lane),
         }
     }
 
@@ -303,8 +306,14 @@ impl<S: Copy + Default> Walker<S> {
     /// Returns whether the ray goes on.
     #[inline(always)]
     pub fn end(&mut self, light: Option<(Vec3A, Vec3A)>, limits: WalkLimits) -> bool {
-        if self.phase == Phase::Walking {
-            self.cross(light, limits);
+        // Only a walking ray has a segment (see `Walker::leave`), so a
+        // lit step needs no test of the phase.
+        let crosses = match light {
+            Some(light) => self.composite(light, limits),
+            None => self.phase == Phase::Walking,
+        };
+        if crosses {
+            self.cross();
         }
         self.phase != Phase::Done
     }
@@ -378,7 +387,7 @@ impl<S: Copy + Default> Walker<S> {
             self.phase = Phase::Done;
             return;
         };
-        self.tet = bf.tet as usize;
+        self.crossing = bf.tet;
         let (face, s_in) = Face::enter(scene.point_records(), &self.projector, bf.vertices);
         lanes.set_face(lane, &face);
         self.s_in = s_in;
@@ -399,7 +408,7 @@ impl<S: Copy + Default> Walker<S> {
         lanes: &mut Lanes<N>,
         lane: usize,
     ) {
-        let record = &cells.records[self.tet];
+        let record = &cells.records[self.crossing as usize];
         if PREFETCH {
             // The next tetrahedron is one of the neighbours across the three
             // other faces: their records start loading now, while this step
@@ -424,6 +433,7 @@ impl<S: Copy + Default> Walker<S> {
         if counters.steps > limits.max_steps {
             counters.step_bound_hit = true;
             self.phase = Phase::Done;
+            lanes.rest(lane);
             return;
         }
         // Of this cell only the vertex opposite the entry face is new: the
@@ -446,10 +456,14 @@ impl<S: Copy + Default> Walker<S> {
         integrator: &I,
         segment: &mut SampledSegment<S>,
     ) -> bool {
-        if !lanes.is_leaving(lane) {
-            return false;
-        }
-        let Some((rank, t_exit, s_out)) = lanes.exit(lane) else {
+        // The exit the lanes found, else (rarely) none for a resting lane or
+        // the lane's own.
+        let exit = match lanes.found(lane) {
+            Some(exit) => Some(exit),
+            None if !lanes.is_leaving(lane) => return false,
+            None => lanes.exit(lane),
+        };
+        let Some((rank, t_exit, s_out)) = exit else {
             // Only a degenerate (flat) tetrahedron has no exit face.
             self.counters.walk_failure = true;
             self.phase = Phase::Done;
@@ -524,20 +538,25 @@ impl<S: Copy + Default> Walker<S> {
         integrate
     }
 
-    /// Composites the step's segment and crosses its exit face.
+    /// Composites the light of the step's segment; returns whether the
+    /// ray goes on (it stops once it is opaque enough).
     #[inline(always)]
-    fn cross(&mut self, light: Option<(Vec3A, Vec3A)>, limits: WalkLimits) {
-        if let Some((emitted, transmittance)) = light {
-            let ray = &mut self.light;
-            ray.color += ray.transmittance * emitted;
-            ray.transmittance *= transmittance;
-            self.counters.segments += 1;
-            // 1 - mean(T) >= threshold, without a division.
-            if ray.transmittance.element_sum() <= limits.stop_below_sum {
-                self.phase = Phase::Done;
-                return;
-            }
+    fn composite(&mut self, (emitted, transmittance): (Vec3A, Vec3A), limits: WalkLimits) -> bool {
+        let ray = &mut self.light;
+        ray.color += ray.transmittance * emitted;
+        ray.transmittance *= transmittance;
+        self.counters.segments += 1;
+        // 1 - mean(T) >= threshold, without a division.
+        if ray.transmittance.element_sum() <= limits.stop_below_sum {
+            self.phase = Phase::Done;
+            return false;
         }
+        true
+    }
+
+    /// Crosses the exit face of the step.
+    #[inline(always)]
+    fn cross(&mut self) {
         let next = self.crossing;
         if next >= FINAL_EXIT {
             // Left through the convex hull: nothing more to meet; otherwise
@@ -554,10 +573,10 @@ impl<S: Copy + Default> Walker<S> {
             }
             return;
         }
-        self.tet = next as usize;
-        // The ray is walking already. The store is kept: without it the
-        // compiler lays the walk out in more instructions (Blunt Fin PPI,
-        // `tools/cpu-instructions`: 291.8 per segment against 288.8).
+        // `crossing` is the ray's cell now. The ray is walking already.
+        // The store is kept: without it the compiler lays the walk out in
+        // more instructions (Blunt Fin PPI, `tools/cpu-instructions`: 284.0
+        // per segment against 277.6).
         self.phase = Phase::Walking;
     }
 }
