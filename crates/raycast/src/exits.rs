@@ -428,15 +428,20 @@ mod tests {
                 .count();
             for (lane, expected) in expected.into_iter().enumerate() {
                 let before = lanes.face(lane);
+                let bits =
+                    |e: Option<(usize, f32, f32)>| e.map(|(r, t, s)| (r, t.to_bits(), s.to_bits()));
                 let Some((exit, after)) = expected else {
-                    // A resting lane keeps its face.
+                    // A resting lane keeps its face and has no exit.
                     assert_same_face(&before, &chunk[lane].face);
+                    assert_eq!(lanes.found(lane), None, "round {round} lane {lane}");
                     continue;
                 };
                 alone += usize::from(lanes.alone[lane]);
+                // What the lanes found is the exit, where they found one.
+                if let Some(found) = lanes.found(lane) {
+                    assert_eq!(bits(Some(found)), bits(exit), "round {round} lane {lane}");
+                }
                 let got = lanes.exit(lane);
-                let bits =
-                    |e: Option<(usize, f32, f32)>| e.map(|(r, t, s)| (r, t.to_bits(), s.to_bits()));
                 assert_eq!(bits(got), bits(exit), "round {round} lane {lane}");
                 if exit.is_some() {
                     assert_same_face_turned(&lanes.face(lane), &after);
