@@ -149,23 +149,24 @@ impl<const N: usize> Lanes<N> {
 
     /// [`Face::exit`] of a lane given a vertex since it last rested,
     /// after [`Lanes::exits`], the lane's face now the exit face; `None`
-    /// for a degenerate cell.
+    /// for a degenerate cell. The exit [`Lanes::found`], else the lane's
+    /// own.
     #[inline(always)]
     pub fn exit(&mut self, lane: usize) -> Option<(usize, f32, f32)> {
-        if self.alone[lane] != 0 {
-            let mut face = self.face(lane);
-            let apex = Vertex {
-                x: self.apex_x[lane],
-                y: self.apex_y[lane],
-                z: self.apex_z[lane],
-                s: self.apex_s[lane],
-                id: self.apex_id[lane],
-            };
-            let exit = face.exit(apex)?;
-            self.set_face(lane, &face);
+        if let Some(exit) = self.found(lane) {
             return Some(exit);
         }
-        Some((self.rank[lane] as usize, self.t[lane], self.value[lane]))
+        let mut face = self.face(lane);
+        let apex = Vertex {
+            x: self.apex_x[lane],
+            y: self.apex_y[lane],
+            z: self.apex_z[lane],
+            s: self.apex_s[lane],
+            id: self.apex_id[lane],
+        };
+        let exit = face.exit(apex)?;
+        self.set_face(lane, &face);
+        Some(exit)
     }
 
     /// The exits of the live lanes, read by [`Lanes::exit`] (see the

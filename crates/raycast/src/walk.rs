@@ -87,7 +87,8 @@ pub(crate) struct Interval {
 enum Phase {
     /// Between entries: the next step asks the BVH where the ray enters.
     Entering,
-    /// Inside the mesh, in `Walker::tet`; from [`Walker::leave`] to
+    /// Inside the mesh, in the cell `Walker::crossing` names until
+    /// [`Walker::leave`] finds the exit; from [`Walker::leave`] to
     /// [`Walker::end`], half-way through a step: the exit is found, the
     /// segment is classified and integrated, and its light composited
     /// before the ray moves to `Walker::crossing` (a cell with no exit
